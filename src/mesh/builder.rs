@@ -1,0 +1,179 @@
+//! `MeshBuilder`: the one way to make a `Mesh`. Readers and generators push nodes, cells
+//! and groups; `finish` checks node indices, reorders clockwise cells and rejects
+//! degenerate or tangled ones, naming the cell.
+
+use super::{CellKind, Mesh};
+use crate::error::{Error, Result};
+use crate::fem::element::{jacobian_det, reference_nodes};
+
+#[derive(Default)]
+pub struct MeshBuilder {
+    mesh: Mesh,
+    /// Label of each cell for error messages (e.g. the element tag in the file).
+    labels: Vec<u64>,
+    /// Where the mesh comes from, for error messages.
+    source: String,
+}
+
+impl MeshBuilder {
+    pub fn new(source: impl Into<String>) -> Self {
+        let mut b = MeshBuilder {
+            source: source.into(),
+            ..Default::default()
+        };
+        b.mesh.offsets.push(0);
+        b
+    }
+
+    pub fn add_node(&mut self, x: [f64; 2]) -> usize {
+        self.mesh.coords.push(x);
+        self.mesh.coords.len() - 1
+    }
+
+    pub fn num_nodes(&self) -> usize {
+        self.mesh.coords.len()
+    }
+
+    pub fn coords(&self) -> &[[f64; 2]] {
+        &self.mesh.coords
+    }
+
+    /// Adds a cell; `label` is the identifier the user knows it by (file tag or index).
+    pub fn add_cell(&mut self, kind: CellKind, nodes: &[usize], label: u64) -> usize {
+        debug_assert_eq!(nodes.len(), kind.num_nodes());
+        self.mesh.kinds.push(kind);
+        self.mesh.conn.extend_from_slice(nodes);
+        self.mesh.offsets.push(self.mesh.conn.len());
+        self.labels.push(label);
+        self.mesh.kinds.len() - 1
+    }
+
+    pub fn add_to_cell_group(&mut self, group: &str, cell: usize) {
+        self.mesh
+            .cell_groups
+            .entry(group.to_string())
+            .or_default()
+            .push(cell);
+    }
+
+    pub fn add_to_node_group(&mut self, group: &str, node: usize) {
+        self.mesh
+            .node_groups
+            .entry(group.to_string())
+            .or_default()
+            .push(node);
+    }
+
+    /// Checks and orients the mesh. Clockwise 2D cells are reordered counter-clockwise
+    /// (counted in `Mesh::reoriented`); cells with a zero or sign-changing Jacobian are errors.
+    pub fn finish(mut self) -> Result<Mesh> {
+        let n_nodes = self.mesh.coords.len();
+        for (i, x) in self.mesh.coords.iter().enumerate() {
+            if !x[0].is_finite() || !x[1].is_finite() {
+                return Err(Error::model(format!(
+                    "{}: node {} has a non-finite coordinate",
+                    self.source,
+                    i + 1
+                )));
+            }
+        }
+        for c in 0..self.mesh.num_cells() {
+            if let Some(&bad) = self.mesh.cell_nodes(c).iter().find(|&&n| n >= n_nodes) {
+                return Err(Error::model(format!(
+                    "{}: cell {} ({}) refers to node {} but the mesh has {} nodes",
+                    self.source,
+                    self.labels[c],
+                    self.mesh.kinds[c],
+                    bad + 1,
+                    n_nodes
+                )));
+            }
+            let kind = self.mesh.kinds[c];
+            if kind.dim() != 2 {
+                continue;
+            }
+            let signs = self.jacobian_signs(c);
+            match signs {
+                Orientation::Positive => {}
+                Orientation::Negative => {
+                    let perm = kind.reverse_permutation();
+                    let range = self.mesh.offsets[c]..self.mesh.offsets[c + 1];
+                    let old: Vec<usize> = self.mesh.conn[range.clone()].to_vec();
+                    for (i, slot) in self.mesh.conn[range].iter_mut().enumerate() {
+                        *slot = old[perm[i]];
+                    }
+                    self.mesh.reoriented += 1;
+                }
+                Orientation::Degenerate(what) => {
+                    return Err(Error::model(format!(
+                        "{}: cell {} ({}) is {}",
+                        self.source, self.labels[c], kind, what
+                    )));
+                }
+            }
+        }
+        for cells in self.mesh.cell_groups.values_mut() {
+            cells.sort_unstable();
+            cells.dedup();
+        }
+        for nodes in self.mesh.node_groups.values_mut() {
+            nodes.sort_unstable();
+            nodes.dedup();
+        }
+        Ok(self.mesh)
+    }
+
+    /// Sign of det J at the reference nodes and the centre of a 2D cell.
+    fn jacobian_signs(&self, c: usize) -> Orientation {
+        let kind = self.mesh.kinds[c];
+        let (x, _) = self.mesh.cell_coords(c);
+        let centre = if kind.num_corners() == 3 {
+            [1.0 / 3.0, 1.0 / 3.0]
+        } else {
+            [0.0, 0.0]
+        };
+        let size2 = {
+            let (mut lo, mut hi) = ([f64::MAX; 2], [f64::MIN; 2]);
+            for xa in &x[..kind.num_nodes()] {
+                for d in 0..2 {
+                    lo[d] = lo[d].min(xa[d]);
+                    hi[d] = hi[d].max(xa[d]);
+                }
+            }
+            ((hi[0] - lo[0]).powi(2) + (hi[1] - lo[1]).powi(2)).max(f64::MIN_POSITIVE)
+        };
+        // Relative threshold: |det J| below 1e-12 of the squared cell size counts as zero.
+        let eps = 1e-12 * size2;
+        let (mut pos, mut neg, mut zero) = (0, 0, 0);
+        for xi in reference_nodes(kind)
+            .iter()
+            .take(kind.num_corners())
+            .copied()
+            .chain(std::iter::once(centre))
+        {
+            let d = jacobian_det(kind, &x, xi);
+            if d > eps {
+                pos += 1;
+            } else if d < -eps {
+                neg += 1;
+            } else {
+                zero += 1;
+            }
+        }
+        if pos > 0 && neg == 0 && zero == 0 {
+            Orientation::Positive
+        } else if neg > 0 && pos == 0 && zero == 0 {
+            Orientation::Negative
+        } else if pos == 0 && neg == 0 {
+            Orientation::Degenerate("of zero area")
+        } else {
+            Orientation::Degenerate("inverted or tangled (its Jacobian changes sign or vanishes)")
+        }
+    }
+}
+
+enum Orientation {
+    Positive,
+    Negative,
+    Degenerate(&'static str),
+}

@@ -1,0 +1,1 @@
+//! Built-in meshes (to be written).

@@ -1,0 +1,1 @@
+//! Gmsh MSH reader (to be written).
