@@ -6,10 +6,20 @@
 //! | module | what |
 //! |---|---|
 //! | `mesh` | nodes, cells, groups; Gmsh reader; built-in generators |
+//! | `assembly` | dof map (imposed, linked), sparse pattern, parallel assembly, loads |
+//! | `solver` | faer direct solvers, Newton with load steps |
+//! | `post` | stresses at nodes, VTU output |
+//! | `case` | TOML case files, built-in SSNP154 cases |
+//! | `cli` | the `tribo` command |
 //! | `fem` | shape functions, quadrature, materials, element kernels |
 
+pub mod assembly;
+pub mod case;
+pub mod cli;
 pub mod error;
 pub mod fem;
 pub mod mesh;
+pub mod post;
+pub mod solver;
 
 pub use error::{Error, Result};

@@ -23,7 +23,11 @@ fn build(kind: CellKind) -> Vec<Vec<f64>> {
     if kind.dim() < 2 || ng == 1 {
         return vec![vec![1.0 / ng as f64; ng]; nn];
     }
-    let linear = if nc == 3 { CellKind::Tri3 } else { CellKind::Quad4 };
+    let linear = if nc == 3 {
+        CellKind::Tri3
+    } else {
+        CellKind::Quad4
+    };
     // P[g][c] = corner shape c at Gauss point g; M = PᵀP; corner values = M⁻¹ Pᵀ σ_g.
     let p: Vec<[f64; 4]> = rule
         .points
@@ -60,9 +64,13 @@ fn build(kind: CellKind) -> Vec<Vec<f64>> {
 /// Gauss–Jordan inverse of a small SPD matrix.
 fn invert(mut a: Vec<Vec<f64>>) -> Vec<Vec<f64>> {
     let n = a.len();
-    let mut inv: Vec<Vec<f64>> = (0..n).map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect()).collect();
+    let mut inv: Vec<Vec<f64>> = (0..n)
+        .map(|i| (0..n).map(|j| if i == j { 1.0 } else { 0.0 }).collect())
+        .collect();
     for col in 0..n {
-        let piv = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs())).unwrap();
+        let piv = (col..n)
+            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
+            .unwrap();
         a.swap(col, piv);
         inv.swap(col, piv);
         let d = a[col][col];
@@ -101,7 +109,10 @@ mod tests {
     #[test]
     fn quad8_corner_row_matches_the_reference_code() {
         let e = matrix(CellKind::Quad8);
-        let expect = [0.958109, -0.305556, 0.097446, -0.305556, 0.326277, -0.104055, -0.104055, 0.326277, 0.111111];
+        let expect = [
+            0.958109, -0.305556, 0.097446, -0.305556, 0.326277, -0.104055, -0.104055, 0.326277,
+            0.111111,
+        ];
         for g in 0..9 {
             assert!((e[0][g] - expect[g]).abs() < 1e-6, "{g}: {}", e[0][g]);
         }
@@ -125,7 +136,10 @@ mod tests {
             let f = |p: [f64; 2]| 2.0 + 3.0 * p[0] - 1.5 * p[1];
             let vals: Vec<f64> = rule.points.iter().map(|&p| f(p)).collect();
             let e = matrix(kind);
-            for (n, &xi) in super::super::element::reference_nodes(kind).iter().enumerate() {
+            for (n, &xi) in super::super::element::reference_nodes(kind)
+                .iter()
+                .enumerate()
+            {
                 let v: f64 = e[n].iter().zip(&vals).map(|(a, b)| a * b).sum();
                 assert!((v - f(xi)).abs() < 1e-12, "{kind} node {n}");
             }

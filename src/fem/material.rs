@@ -50,7 +50,10 @@ impl Elastic {
     /// Lamé constants (λ, μ).
     pub fn lame(&self) -> (f64, f64) {
         let (e, nu) = (self.young, self.poisson);
-        (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)))
+        (
+            e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+            e / (2.0 * (1.0 + nu)),
+        )
     }
 
     /// Elasticity matrix on [xx, yy, zz, xy] (engineering shear). In plane stress the zz

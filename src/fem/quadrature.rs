@@ -54,7 +54,11 @@ pub fn gauss_legendre(n: usize) -> (Vec<f64>, Vec<f64>) {
         }
         x[i] = -z;
         x[n - 1 - i] = z;
-        let wi = if n == 1 { 2.0 } else { 2.0 / ((1.0 - z * z) * dp * dp) };
+        let wi = if n == 1 {
+            2.0
+        } else {
+            2.0 / ((1.0 - z * z) * dp * dp)
+        };
         w[i] = wi;
         w[n - 1 - i] = wi;
     }
@@ -131,7 +135,11 @@ fn build_stiffness_rule(kind: CellKind) -> Rule {
             weights: vec![0.5],
         },
         CellKind::Tri6 => Rule {
-            points: vec![[1.0 / 6.0, 1.0 / 6.0], [2.0 / 3.0, 1.0 / 6.0], [1.0 / 6.0, 2.0 / 3.0]],
+            points: vec![
+                [1.0 / 6.0, 1.0 / 6.0],
+                [2.0 / 3.0, 1.0 / 6.0],
+                [1.0 / 6.0, 2.0 / 3.0],
+            ],
             weights: vec![1.0 / 6.0; 3],
         },
         CellKind::Quad4 => {
@@ -165,7 +173,12 @@ fn build_stiffness_rule(kind: CellKind) -> Rule {
 /// The stiffness rule of `kind` (cached).
 pub fn stiffness_rule(kind: CellKind) -> &'static Rule {
     static RULES: OnceLock<Vec<Rule>> = OnceLock::new();
-    let rules = RULES.get_or_init(|| CellKind::ALL.iter().map(|&k| build_stiffness_rule(k)).collect());
+    let rules = RULES.get_or_init(|| {
+        CellKind::ALL
+            .iter()
+            .map(|&k| build_stiffness_rule(k))
+            .collect()
+    });
     &rules[CellKind::ALL.iter().position(|&k| k == kind).unwrap()]
 }
 
@@ -175,7 +188,13 @@ mod tests {
 
     /// Exact integral of x^i y^j over the reference cell.
     fn exact_monomial(kind: CellKind, i: i32, j: i32) -> f64 {
-        let line = |p: i32| if p % 2 == 1 { 0.0 } else { 2.0 / (p as f64 + 1.0) };
+        let line = |p: i32| {
+            if p % 2 == 1 {
+                0.0
+            } else {
+                2.0 / (p as f64 + 1.0)
+            }
+        };
         match kind.dim() {
             1 => line(i),
             _ if kind.num_corners() == 3 => {
@@ -221,16 +240,33 @@ mod tests {
     fn stiffness_rules_are_not_exact_beyond_their_degree() {
         // Guards the check itself: the one-point triangle rule misses x².
         let r = stiffness_rule(CellKind::Tri3);
-        let q: f64 = r.points.iter().zip(&r.weights).map(|(p, w)| w * p[0] * p[0]).sum();
+        let q: f64 = r
+            .points
+            .iter()
+            .zip(&r.weights)
+            .map(|(p, w)| w * p[0] * p[0])
+            .sum();
         assert!((q - exact_monomial(CellKind::Tri3, 2, 0)).abs() > 1e-3);
     }
 
     #[test]
     fn general_rules_are_exact() {
         for deg in 1..12 {
-            check(CellKind::Seg2, &exact_to_degree(CellKind::Seg2, deg), deg as i32);
-            check(CellKind::Quad4, &exact_to_degree(CellKind::Quad4, deg), deg as i32);
-            check(CellKind::Tri3, &exact_to_degree(CellKind::Tri3, deg), deg as i32);
+            check(
+                CellKind::Seg2,
+                &exact_to_degree(CellKind::Seg2, deg),
+                deg as i32,
+            );
+            check(
+                CellKind::Quad4,
+                &exact_to_degree(CellKind::Quad4, deg),
+                deg as i32,
+            );
+            check(
+                CellKind::Tri3,
+                &exact_to_degree(CellKind::Tri3, deg),
+                deg as i32,
+            );
         }
     }
 }

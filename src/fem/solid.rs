@@ -64,7 +64,10 @@ pub fn point_geometry(
     if det <= 0.0 || !det.is_finite() {
         return None;
     }
-    let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+    let inv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
     let mut dn = [[0.0; 2]; MAX_NODES];
     for a in 0..nn {
         // ∂N/∂x_c = Σ_k ∂N/∂ξ_k (J⁻¹)_kc
@@ -92,14 +95,23 @@ fn b_rows(g: &PointGeometry, a: usize, f: &[[f64; 2]; 2], fzz: f64, axi: bool) -
     [
         [f[0][0] * dx, f[1][0] * dx],
         [f[0][1] * dy, f[1][1] * dy],
-        if axi { [fzz * g.n[a] / g.r, 0.0] } else { [0.0, 0.0] },
+        if axi {
+            [fzz * g.n[a] / g.r, 0.0]
+        } else {
+            [0.0, 0.0]
+        },
         [f[0][0] * dy + f[0][1] * dx, f[1][0] * dy + f[1][1] * dx],
     ]
 }
 
 /// Kinematic state at a point: F (in-plane), F_zz, and the strain in Voigt form
 /// (small strain or Green–Lagrange).
-pub fn strain_at(g: &PointGeometry, nn: usize, u: &[[f64; 2]], sm: &SolidModel) -> ([[f64; 2]; 2], f64, [f64; 4]) {
+pub fn strain_at(
+    g: &PointGeometry,
+    nn: usize,
+    u: &[[f64; 2]],
+    sm: &SolidModel,
+) -> ([[f64; 2]; 2], f64, [f64; 4]) {
     let mut h = [[0.0; 2]; 2]; // displacement gradient ∂u_i/∂X_j
     let mut ur = 0.0;
     for a in 0..nn {
@@ -213,7 +225,13 @@ pub fn residual_tangent(
 /// Stress at each quadrature point of the stiffness rule, [xx, yy, zz, xy]: Cauchy stress
 /// for large kinematics (σ = J⁻¹ F S Fᵀ), the linear stress otherwise. In plane stress
 /// σ_zz = 0. Writes `rule.len()` entries into `out`.
-pub fn gauss_stresses(kind: CellKind, x: &[[f64; 2]], u: &[[f64; 2]], sm: &SolidModel, out: &mut [[f64; 4]]) -> Result<(), ()> {
+pub fn gauss_stresses(
+    kind: CellKind,
+    x: &[[f64; 2]],
+    u: &[[f64; 2]],
+    sm: &SolidModel,
+    out: &mut [[f64; 4]],
+) -> Result<(), ()> {
     let nn = kind.num_nodes();
     let d = sm.material.matrix(sm.model);
     let rule = stiffness_rule(kind);
@@ -263,7 +281,10 @@ mod tests {
             .map(|(i, p)| {
                 // affine map + a small nonlinear wiggle, shifted to positive x for axisymmetry
                 let s = 0.05 * ((i as f64) * 1.7).sin();
-                [2.0 + 1.1 * p[0] + 0.2 * p[1] + s, 0.5 + 0.1 * p[0] + 0.9 * p[1] - s]
+                [
+                    2.0 + 1.1 * p[0] + 0.2 * p[1] + s,
+                    0.5 + 0.1 * p[0] + 0.9 * p[1] - s,
+                ]
             })
             .collect()
     }
@@ -271,8 +292,17 @@ mod tests {
     /// The tangent equals the finite-difference derivative of the internal forces.
     #[test]
     fn tangent_matches_finite_differences() {
-        for kind in [CellKind::Tri3, CellKind::Tri6, CellKind::Quad4, CellKind::Quad8] {
-            for m in [Modelisation::PlaneStrain, Modelisation::PlaneStress, Modelisation::Axisymmetric] {
+        for kind in [
+            CellKind::Tri3,
+            CellKind::Tri6,
+            CellKind::Quad4,
+            CellKind::Quad8,
+        ] {
+            for m in [
+                Modelisation::PlaneStrain,
+                Modelisation::PlaneStress,
+                Modelisation::Axisymmetric,
+            ] {
                 for k in [Kinematics::Small, Kinematics::Large] {
                     if m == Modelisation::PlaneStress && k == Kinematics::Large {
                         continue;
@@ -281,8 +311,9 @@ mod tests {
                     let x = distorted(kind);
                     let nn = kind.num_nodes();
                     let nd = 2 * nn;
-                    let u: Vec<[f64; 2]> =
-                        (0..nn).map(|a| [0.05 * (a as f64 * 0.9).cos(), 0.04 * (a as f64 * 1.3).sin()]).collect();
+                    let u: Vec<[f64; 2]> = (0..nn)
+                        .map(|a| [0.05 * (a as f64 * 0.9).cos(), 0.04 * (a as f64 * 1.3).sin()])
+                        .collect();
                     let mut fe = [0.0; MAX_DOFS];
                     let mut ke = [0.0; MAX_DOFS * MAX_DOFS];
                     residual_tangent(kind, &x, &u, &sm, &mut fe, Some(&mut ke)).unwrap();
@@ -304,7 +335,10 @@ mod tests {
                             max_k = max_k.max(ke[row * nd + col].abs());
                         }
                     }
-                    assert!(max_err < 1e-6 * max_k, "{kind} {m:?} {k:?}: FD error {max_err} (|K| {max_k})");
+                    assert!(
+                        max_err < 1e-6 * max_k,
+                        "{kind} {m:?} {k:?}: FD error {max_err} (|K| {max_k})"
+                    );
                 }
             }
         }
@@ -319,7 +353,12 @@ mod tests {
             let th: f64 = 0.7;
             let u: Vec<[f64; 2]> = x
                 .iter()
-                .map(|p| [th.cos() * p[0] - th.sin() * p[1] - p[0], th.sin() * p[0] + th.cos() * p[1] - p[1]])
+                .map(|p| {
+                    [
+                        th.cos() * p[0] - th.sin() * p[1] - p[0],
+                        th.sin() * p[0] + th.cos() * p[1] - p[1],
+                    ]
+                })
                 .collect();
             let mut fe = [0.0; MAX_DOFS];
             residual_tangent(kind, &x, &u, &sm, &mut fe, None).unwrap();

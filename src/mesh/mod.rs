@@ -4,6 +4,7 @@
 //! |---|---|
 //! | `cell.rs` | `CellKind`: node counts, local edges, orientation permutations |
 //! | `builder.rs` | `MeshBuilder`: readers and generators push nodes, cells and groups; `finish` checks and orients |
+//! | `topology.rs` | edge → parent cell adjacency, outward orientation |
 //! | `quality.rs` | min angle, max aspect ratio, bounding box |
 //! | `gmsh.rs` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
@@ -16,6 +17,7 @@ pub mod cell;
 pub mod generate;
 pub mod gmsh;
 pub mod quality;
+pub mod topology;
 
 pub use builder::MeshBuilder;
 pub use cell::CellKind;
@@ -159,5 +161,20 @@ impl Mesh {
             }
         }
         (count, cells)
+    }
+}
+
+/// Reads a mesh file, choosing the reader by extension.
+pub fn read(path: &std::path::Path) -> Result<Mesh> {
+    match path
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase())
+    {
+        Some(e) if e == "msh" => gmsh::read(path),
+        _ => Err(Error::model(format!(
+            "{}: unknown mesh format; supported: Gmsh .msh (MSH 4.1 ASCII/binary, 2.2 ASCII)",
+            path.display()
+        ))),
     }
 }

@@ -1,0 +1,354 @@
+//! Case files: load and check a TOML case, build the mesh and the discrete problem, run it.
+//!
+//! | file | what |
+//! |---|---|
+//! | `schema.rs` | serde structs of the TOML format (unknown keys rejected) |
+//! | `ssnp154.rs` | the built-in SSNP154 cases |
+
+pub mod schema;
+pub mod ssnp154;
+
+use crate::assembly::dofs::{DofMap, Relation};
+use crate::assembly::loads::{add_edge_load, add_nodal_force, EdgeLoad};
+use crate::assembly::Assembler;
+use crate::error::{Error, Result};
+use crate::fem::material::{Elastic, Modelisation};
+use crate::fem::solid::{Kinematics, SolidModel};
+use crate::mesh::{generate, CellKind, Mesh};
+use crate::post::stress::{cell_node_stresses, nodal_stresses};
+use crate::solver::linear::Method;
+use crate::solver::newton::{self, NewtonReport, NewtonSettings};
+use crate::solver::problem::SolidProblem;
+use schema::CaseFile;
+use std::path::{Path, PathBuf};
+
+/// Reads a case file; syntax errors and unknown keys name the file, line and valid keys.
+pub fn load(path: &Path) -> Result<(CaseFile, PathBuf)> {
+    let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
+    let case: CaseFile = toml::from_str(&text).map_err(|e| {
+        Error::parse(
+            path.display().to_string(),
+            e.to_string().trim_end().to_string(),
+        )
+    })?;
+    let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
+    Ok((case, dir))
+}
+
+fn need<T: Copy>(v: Option<T>, key: &str, generator: &str) -> Result<T> {
+    v.ok_or_else(|| {
+        Error::model(format!(
+            "[mesh] generator '{generator}' needs the key '{key}'"
+        ))
+    })
+}
+
+/// Builds the mesh of a case: a file (relative to `dir`) or a generator.
+pub fn build_mesh(spec: &schema::MeshSpec, dir: &Path) -> Result<Mesh> {
+    match (&spec.file, &spec.generator) {
+        (Some(f), None) => {
+            let p = dir.join(f);
+            crate::mesh::read(&p)
+        }
+        (None, Some(g)) => {
+            let cell = || -> Result<CellKind> {
+                let name = spec.cell.as_deref().unwrap_or("Quad4");
+                CellKind::from_name(name)
+                    .filter(|k| k.dim() == 2)
+                    .ok_or_else(|| {
+                        Error::model(format!(
+                            "[mesh] cell '{name}' is not one of Tri3, Tri6, Quad4, Quad8"
+                        ))
+                    })
+            };
+            match g.as_str() {
+                "ssnp154" => generate::ssnp154(&generate::Ssnp154Options {
+                    quadratic: spec.quadratic,
+                    size: spec.size.unwrap_or(1.5),
+                    ..Default::default()
+                }),
+                "rectangle" => generate::rectangle(
+                    spec.origin.unwrap_or([0.0, 0.0]),
+                    need(spec.width, "width", g)?,
+                    need(spec.height, "height", g)?,
+                    need(spec.nx, "nx", g)?,
+                    need(spec.ny, "ny", g)?,
+                    cell()?,
+                    spec.distortion,
+                ),
+                "ring" => generate::ring(
+                    need(spec.r_in, "r_in", g)?,
+                    need(spec.r_out, "r_out", g)?,
+                    need(spec.n_r, "n_r", g)?,
+                    need(spec.n_theta, "n_theta", g)?,
+                    spec.angle.unwrap_or(90.0),
+                    cell()?,
+                ),
+                other => Err(Error::model(format!(
+                    "[mesh] unknown generator '{other}'; generators are: ssnp154, rectangle, ring"
+                ))),
+            }
+        }
+        _ => Err(Error::model(
+            "[mesh] needs exactly one of 'file' or 'generator'",
+        )),
+    }
+}
+
+fn dof_index(node: usize, dof: &str, what: &str) -> Result<usize> {
+    match dof {
+        "dx" => Ok(2 * node),
+        "dy" => Ok(2 * node + 1),
+        other => Err(Error::model(format!(
+            "{what}: dof '{other}' is not one of dx, dy"
+        ))),
+    }
+}
+
+/// The assembled problem of a case, ready to solve.
+pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem<'m>> {
+    let m = &case.model;
+    if m.modelisation == Modelisation::PlaneStress && m.kinematics == Kinematics::Large {
+        return Err(Error::model(
+            "[model] large kinematics is not available in plane stress; use plane_strain or axisymmetric",
+        ));
+    }
+    if !(m.thickness > 0.0) {
+        return Err(Error::model(format!(
+            "[model] thickness must be positive, got {}",
+            m.thickness
+        )));
+    }
+    if m.modelisation == Modelisation::Axisymmetric {
+        if let Some((i, x)) = mesh.coords.iter().enumerate().find(|(_, x)| x[0] < -1e-9) {
+            return Err(Error::model(format!(
+                "axisymmetric model: node {} has a negative radius x = {}",
+                i + 1,
+                x[0]
+            )));
+        }
+    }
+    // Materials by group: every 2D cell needs exactly one.
+    let mut material_of: Vec<Option<usize>> = vec![None; mesh.num_cells()];
+    let mut materials = vec![];
+    for (i, spec) in case.material.iter().enumerate() {
+        let what = format!("[[material]] for group '{}'", spec.group);
+        let cells = mesh
+            .cell_group(&spec.group)
+            .map_err(|e| Error::model(format!("[[material]]: {e}")))?;
+        if mesh.group_dim(&spec.group) != Some(2) {
+            return Err(Error::model(format!(
+                "{what}: the group is not made of 2D cells"
+            )));
+        }
+        materials.push(Elastic::new(spec.young, spec.nu, &what)?);
+        for &c in cells {
+            material_of[c] = Some(i);
+        }
+    }
+    let mut cells = vec![];
+    let mut models = vec![];
+    let mut missing = 0;
+    for c in mesh.cells_of_dim(2) {
+        match material_of[c] {
+            Some(i) => {
+                cells.push(c);
+                models.push(SolidModel {
+                    model: m.modelisation,
+                    kinematics: m.kinematics,
+                    material: materials[i],
+                    thickness: m.thickness,
+                });
+            }
+            None => missing += 1,
+        }
+    }
+    if missing > 0 {
+        let groups2d: Vec<&String> = mesh
+            .cell_groups
+            .keys()
+            .filter(|g| mesh.group_dim(g) == Some(2))
+            .collect();
+        return Err(Error::model(format!(
+            "{missing} 2D cells have no material; give a [[material]] for each body (2D groups: {})",
+            groups2d.iter().map(|s| s.as_str()).collect::<Vec<_>>().join(", ")
+        )));
+    }
+    let ndof = 2 * mesh.num_nodes();
+    let mut used = vec![false; ndof];
+    for &c in &cells {
+        for &n in mesh.cell_nodes(c) {
+            used[2 * n] = true;
+            used[2 * n + 1] = true;
+        }
+    }
+    let mut fixed = vec![];
+    for spec in &case.displacement {
+        let nodes = mesh
+            .node_group(&spec.group)
+            .map_err(|e| Error::model(format!("[[displacement]]: {e}")))?;
+        for &n in &nodes {
+            if let Some(v) = spec.dx {
+                fixed.push((2 * n, v));
+            }
+            if let Some(v) = spec.dy {
+                fixed.push((2 * n + 1, v));
+            }
+        }
+    }
+    let mut relations = vec![];
+    for (i, spec) in case.relation.iter().enumerate() {
+        let name = if spec.name.is_empty() {
+            format!("relation {}", i + 1)
+        } else {
+            spec.name.clone()
+        };
+        let mut terms = vec![];
+        for t in &spec.terms {
+            let what = format!("[[relation]] '{name}'");
+            let node = mesh
+                .single_node(&t.group)
+                .map_err(|e| Error::model(format!("{what}: {e}")))?;
+            terms.push((dof_index(node, &t.dof, &what)?, t.coef));
+        }
+        relations.push(Relation {
+            terms,
+            rhs: spec.rhs,
+            name,
+        });
+    }
+    let dofs = DofMap::new(&used, &fixed, &relations)?;
+    let mut fext = vec![0.0; ndof];
+    for spec in &case.force {
+        let nodes = mesh
+            .node_group(&spec.group)
+            .map_err(|e| Error::model(format!("[[force]]: {e}")))?;
+        add_nodal_force(&mut fext, &nodes, [spec.fx, spec.fy]);
+    }
+    for spec in &case.pressure {
+        add_edge_load(
+            mesh,
+            &spec.group,
+            EdgeLoad::Pressure(spec.p),
+            m.modelisation,
+            m.thickness,
+            &mut fext,
+        )
+        .map_err(|e| Error::model(format!("[[pressure]]: {e}")))?;
+    }
+    for spec in &case.traction {
+        add_edge_load(
+            mesh,
+            &spec.group,
+            EdgeLoad::Traction([spec.tx, spec.ty]),
+            m.modelisation,
+            m.thickness,
+            &mut fext,
+        )
+        .map_err(|e| Error::model(format!("[[traction]]: {e}")))?;
+    }
+    let asm = Assembler::new(mesh, cells, models, dofs)?;
+    Ok(SolidProblem::new(mesh, asm, fext))
+}
+
+/// What a run produces.
+pub struct Outcome {
+    pub report: NewtonReport,
+    pub u: Vec<f64>,
+    pub reactions: Vec<f64>,
+    /// Nodal stresses averaged over all cells sharing a node.
+    pub stress: Vec<[f64; 4]>,
+    pub probes: Vec<(String, f64)>,
+}
+
+/// Value of a probe: mean of the field over the nodes of its group.
+pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]]) -> Result<f64> {
+    let mesh = problem.mesh;
+    let what = format!("probe '{}'", spec.name);
+    let nodes = mesh
+        .node_group(&spec.group)
+        .map_err(|e| Error::model(format!("{what}: {e}")))?;
+    let comp = match spec.field.as_str() {
+        "dx" | "dy" => None,
+        "sixx" => Some(0),
+        "siyy" => Some(1),
+        "sizz" => Some(2),
+        "sixy" => Some(3),
+        "vmis" => Some(4),
+        other => {
+            return Err(Error::model(format!(
+                "{what}: field '{other}' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis"
+            )))
+        }
+    };
+    let values: Vec<f64> = match comp {
+        None => {
+            let c = if spec.field == "dx" { 0 } else { 1 };
+            nodes.iter().map(|&n| problem.u[2 * n + c]).collect()
+        }
+        Some(k) => {
+            let local;
+            let s = match &spec.stress_group {
+                Some(g) => {
+                    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
+                    local = nodal_stresses(mesh, &problem.asm, &elno, Some(g))
+                        .map_err(|e| Error::model(format!("{what}: {e}")))?;
+                    &local
+                }
+                None => all,
+            };
+            nodes
+                .iter()
+                .map(|&n| {
+                    if k == 4 {
+                        crate::fem::material::von_mises(&s[n])
+                    } else {
+                        s[n][k]
+                    }
+                })
+                .collect()
+        }
+    };
+    if values.iter().any(|v| v.is_nan()) {
+        return Err(Error::model(format!(
+            "{what}: some nodes of group '{}' are in no cell of the stress group",
+            spec.group
+        )));
+    }
+    Ok(values.iter().sum::<f64>() / values.len() as f64)
+}
+
+/// Solves a case on a mesh.
+pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
+    let mut problem = build_problem(case, mesh)?;
+    // Probes are checked before the (possibly long) solve.
+    for p in &case.output.probe {
+        mesh.node_group(&p.group)
+            .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
+        if let Some(g) = &p.stress_group {
+            mesh.cell_group(g)
+                .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
+        }
+    }
+    let settings = NewtonSettings {
+        steps: case.solver.steps.max(1),
+        tolerance: case.solver.tolerance,
+        max_iterations: case.solver.max_iterations,
+        verbose,
+        ..Default::default()
+    };
+    let report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
+    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
+    let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
+    let mut probes = vec![];
+    for p in &case.output.probe {
+        probes.push((p.name.clone(), probe(&problem, p, &stress)?));
+    }
+    Ok(Outcome {
+        report,
+        reactions: problem.reactions(),
+        u: problem.u.clone(),
+        stress,
+        probes,
+    })
+}

@@ -1,0 +1,224 @@
+//! The TOML case file, mirrored by serde structs. Unknown keys are errors that list the
+//! valid ones (serde's `deny_unknown_fields`).
+
+use crate::fem::material::Modelisation;
+use crate::fem::solid::Kinematics;
+use serde::{Deserialize, Serialize};
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// Free text shown in reports.
+    #[serde(default)]
+    pub title: String,
+    pub mesh: MeshSpec,
+    #[serde(default)]
+    pub model: ModelSpec,
+    #[serde(default)]
+    pub material: Vec<MaterialSpec>,
+    #[serde(default)]
+    pub displacement: Vec<DisplacementSpec>,
+    #[serde(default)]
+    pub force: Vec<ForceSpec>,
+    #[serde(default)]
+    pub pressure: Vec<PressureSpec>,
+    #[serde(default)]
+    pub traction: Vec<TractionSpec>,
+    #[serde(default)]
+    pub relation: Vec<RelationSpec>,
+    #[serde(default)]
+    pub solver: SolverSpec,
+    #[serde(default)]
+    pub output: OutputSpec,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSpec {
+    /// Mesh file (Gmsh .msh), relative to the case file.
+    pub file: Option<String>,
+    /// Built-in generator: "ssnp154", "rectangle" or "ring".
+    pub generator: Option<String>,
+    /// ssnp154: quadratic cells (Quad8/Tri6).
+    #[serde(default)]
+    pub quadratic: bool,
+    /// ssnp154: element size at the contact (mm).
+    pub size: Option<f64>,
+    /// rectangle / ring: cell kind ("Quad4", "Quad8", "Tri3", "Tri6").
+    pub cell: Option<String>,
+    pub origin: Option<[f64; 2]>,
+    pub width: Option<f64>,
+    pub height: Option<f64>,
+    pub nx: Option<usize>,
+    pub ny: Option<usize>,
+    #[serde(default)]
+    pub distortion: f64,
+    pub r_in: Option<f64>,
+    pub r_out: Option<f64>,
+    pub n_r: Option<usize>,
+    pub n_theta: Option<usize>,
+    pub angle: Option<f64>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelSpec {
+    #[serde(default = "default_modelisation")]
+    pub modelisation: Modelisation,
+    #[serde(default = "default_kinematics")]
+    pub kinematics: Kinematics,
+    /// Thickness for plane stress / plane strain.
+    #[serde(default = "one")]
+    pub thickness: f64,
+}
+
+impl Default for ModelSpec {
+    fn default() -> Self {
+        ModelSpec {
+            modelisation: default_modelisation(),
+            kinematics: default_kinematics(),
+            thickness: 1.0,
+        }
+    }
+}
+
+fn default_modelisation() -> Modelisation {
+    Modelisation::PlaneStrain
+}
+fn default_kinematics() -> Kinematics {
+    Kinematics::Small
+}
+fn one() -> f64 {
+    1.0
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    pub group: String,
+    #[serde(rename = "E")]
+    pub young: f64,
+    pub nu: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct DisplacementSpec {
+    pub group: String,
+    pub dx: Option<f64>,
+    pub dy: Option<f64>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ForceSpec {
+    pub group: String,
+    /// Force applied at each node of the group.
+    #[serde(default)]
+    pub fx: f64,
+    #[serde(default)]
+    pub fy: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct PressureSpec {
+    pub group: String,
+    pub p: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TractionSpec {
+    pub group: String,
+    #[serde(default)]
+    pub tx: f64,
+    #[serde(default)]
+    pub ty: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RelationSpec {
+    #[serde(default)]
+    pub name: String,
+    pub terms: Vec<TermSpec>,
+    #[serde(default)]
+    pub rhs: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct TermSpec {
+    /// A group holding exactly one node.
+    pub group: String,
+    /// "dx" or "dy".
+    pub dof: String,
+    pub coef: f64,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverSpec {
+    #[serde(default = "one_usize")]
+    pub steps: usize,
+    #[serde(default = "default_tol")]
+    pub tolerance: f64,
+    #[serde(default = "default_iter")]
+    pub max_iterations: usize,
+}
+
+impl Default for SolverSpec {
+    fn default() -> Self {
+        SolverSpec {
+            steps: 1,
+            tolerance: default_tol(),
+            max_iterations: default_iter(),
+        }
+    }
+}
+
+fn one_usize() -> usize {
+    1
+}
+fn default_tol() -> f64 {
+    1e-6
+}
+fn default_iter() -> usize {
+    25
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSpec {
+    /// Write `result.vtu`.
+    #[serde(default = "yes")]
+    pub vtu: bool,
+    #[serde(default)]
+    pub probe: Vec<ProbeSpec>,
+}
+
+impl Default for OutputSpec {
+    fn default() -> Self {
+        OutputSpec {
+            vtu: true,
+            probe: vec![],
+        }
+    }
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeSpec {
+    pub name: String,
+    /// Node group; the probe is the mean over its nodes.
+    pub group: String,
+    /// dx, dy, sixx, siyy, sizz, sixy, vmis
+    pub field: String,
+    /// For stress fields: average the extrapolated values over the cells of this group only.
+    pub stress_group: Option<String>,
+}

@@ -1,0 +1,120 @@
+//! The SSNP154 benchmark (NAFEMS contact benchmark 1) as built-in cases, with the
+//! reference values of its six modelisations (shared/ssnp154/reference.toml).
+
+use super::schema::*;
+use crate::fem::material::Modelisation;
+use crate::fem::solid::Kinematics;
+
+/// Reference values: (id, quadratic, DY_B, SIYY_B).
+pub const REFERENCES: [(&str, bool, f64, f64); 6] = [
+    ("A", false, -1.3069040401077, -3800.4949548283),
+    ("B", true, -1.3080192481252, -3513.3741602327),
+    ("C", false, -1.3010795638714, -3670.2561088662),
+    ("D", true, -1.3026356448389, -3542.6878770218),
+    ("E", false, -1.3067596639633, -3814.1811065942),
+    ("F", true, -1.3080923611548, -3502.7937782466),
+];
+
+/// The benchmark's bodies, supports and load, with B and C glued in y (DY(B) = DY(C))
+/// instead of contact: the elastic stage that runs before contact exists.
+pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
+    CaseFile {
+        title: "SSNP154 geometry, bodies glued at B-C (no contact)".into(),
+        mesh,
+        model: ModelSpec {
+            modelisation: Modelisation::PlaneStrain,
+            kinematics,
+            thickness: 1.0,
+        },
+        material: vec![
+            MaterialSpec {
+                group: "Block".into(),
+                young: 70000.0,
+                nu: 0.3,
+            },
+            MaterialSpec {
+                group: "Cylinder".into(),
+                young: 210000.0,
+                nu: 0.3,
+            },
+        ],
+        displacement: vec![
+            DisplacementSpec {
+                group: "Encast".into(),
+                dx: Some(0.0),
+                dy: Some(0.0),
+            },
+            DisplacementSpec {
+                group: "Axe".into(),
+                dx: Some(0.0),
+                dy: None,
+            },
+        ],
+        force: vec![ForceSpec {
+            group: "Force".into(),
+            fx: 0.0,
+            fy: -17500.0,
+        }],
+        pressure: vec![],
+        traction: vec![],
+        relation: vec![RelationSpec {
+            name: "DY(B) = DY(C)".into(),
+            terms: vec![
+                TermSpec {
+                    group: "B".into(),
+                    dof: "dy".into(),
+                    coef: 1.0,
+                },
+                TermSpec {
+                    group: "C".into(),
+                    dof: "dy".into(),
+                    coef: -1.0,
+                },
+            ],
+            rhs: 0.0,
+        }],
+        solver: SolverSpec {
+            steps: 2,
+            ..Default::default()
+        },
+        output: OutputSpec {
+            vtu: true,
+            probe: vec![
+                ProbeSpec {
+                    name: "DY_B".into(),
+                    group: "B".into(),
+                    field: "dy".into(),
+                    stress_group: None,
+                },
+                ProbeSpec {
+                    name: "SIYY_B".into(),
+                    group: "B".into(),
+                    field: "siyy".into(),
+                    stress_group: Some("Block".into()),
+                },
+            ],
+        },
+    }
+}
+
+/// Mesh spec of the built-in SSNP154 mesh.
+pub fn builtin_mesh(quadratic: bool, size: f64) -> MeshSpec {
+    MeshSpec {
+        file: None,
+        generator: Some("ssnp154".into()),
+        quadratic,
+        size: Some(size),
+        cell: None,
+        origin: None,
+        width: None,
+        height: None,
+        nx: None,
+        ny: None,
+        distortion: 0.0,
+        r_in: None,
+        r_out: None,
+        n_r: None,
+        n_theta: None,
+        angle: None,
+    }
+}

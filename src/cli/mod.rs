@@ -1,0 +1,86 @@
+//! Command-line interface: one file per subcommand.
+//!
+//! | file | what |
+//! |---|---|
+//! | `run.rs` | `tribo run CASE.toml [-o DIR]` |
+//! | `mesh.rs` | `tribo mesh info FILE [--json]` |
+//! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
+
+mod mesh;
+mod run;
+mod validate;
+
+use crate::error::Result;
+use clap::{Parser, Subcommand};
+use std::path::PathBuf;
+
+#[derive(Parser)]
+#[command(
+    name = "tribo",
+    version,
+    about = "Finite-element solver for frictional contact between elastic bodies (2D)"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Solve a case file; writes results.json and result.vtu in the output folder.
+    Run {
+        case: PathBuf,
+        /// Output folder (default: next to the case file, named after it).
+        #[arg(short, long)]
+        output: Option<PathBuf>,
+        /// Print every Newton iteration.
+        #[arg(short, long)]
+        verbose: bool,
+    },
+    /// Mesh tools.
+    Mesh {
+        #[command(subcommand)]
+        command: MeshCommand,
+    },
+    /// Run the SSNP154 validation.
+    Validate {
+        /// Folder holding ssnp154a.msh and ssnp154b.msh (default: built-in meshes).
+        #[arg(long)]
+        meshes: Option<PathBuf>,
+        /// Write the table as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        #[arg(short, long)]
+        verbose: bool,
+    },
+}
+
+#[derive(Subcommand)]
+enum MeshCommand {
+    /// Counts per cell kind, groups, bounding box, orientation fixes and quality.
+    Info {
+        file: PathBuf,
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Runs the command line; returns the process exit code.
+pub fn main() -> Result<i32> {
+    let cli = Cli::parse();
+    match cli.command {
+        Command::Run {
+            case,
+            output,
+            verbose,
+        } => run::run(&case, output.as_deref(), verbose),
+        Command::Mesh {
+            command: MeshCommand::Info { file, json },
+        } => mesh::info(&file, json),
+        Command::Validate {
+            meshes,
+            json,
+            verbose,
+        } => validate::validate(meshes.as_deref(), json.as_deref(), verbose),
+    }
+}

@@ -1,0 +1,11 @@
+//! Solvers: sparse direct linear solves and Newton with load steps.
+//!
+//! | file | what |
+//! |---|---|
+//! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
+//! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
+//! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
+
+pub mod linear;
+pub mod newton;
+pub mod problem;

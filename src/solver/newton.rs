@@ -1,0 +1,141 @@
+//! Newton's method with load steps: λ goes from 0 to 1 in equal steps; each step iterates
+//! until the relative residual is below the tolerance; a step that fails is cut in half and
+//! retried (up to `max_cuts` times). Every iteration is recorded for the report.
+
+use super::linear::{LinearSolver, Method};
+use super::problem::SolidProblem;
+use crate::error::{Error, Result};
+use serde::Serialize;
+
+#[derive(Clone, Debug)]
+pub struct NewtonSettings {
+    pub steps: usize,
+    pub tolerance: f64,
+    pub max_iterations: usize,
+    pub max_cuts: usize,
+    pub verbose: bool,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            steps: 1,
+            tolerance: 1e-6,
+            max_iterations: 25,
+            max_cuts: 5,
+            verbose: false,
+        }
+    }
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Iteration {
+    pub iteration: usize,
+    /// max-norm of the residual over the displacement rows, divided by the force scale
+    pub relative_residual: f64,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct StepReport {
+    pub load_factor: f64,
+    pub converged: bool,
+    pub iterations: Vec<Iteration>,
+}
+
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct NewtonReport {
+    pub steps: Vec<StepReport>,
+    pub total_iterations: usize,
+    pub factorizations: usize,
+    pub symbolic_factorizations: usize,
+}
+
+/// Solves the problem from its current state to λ = 1.
+pub fn solve(
+    problem: &mut SolidProblem,
+    settings: &NewtonSettings,
+    method: Method,
+) -> Result<NewtonReport> {
+    let n = problem.num_unknowns();
+    let mut x = vec![0.0; n];
+    problem.asm.dofs.restrict(&problem.u, &mut x);
+    let mut r = vec![0.0; n];
+    let mut lin = LinearSolver::new(method);
+    let mut report = NewtonReport::default();
+    let mut lambda_done = 0.0;
+    let base = 1.0 / settings.steps.max(1) as f64;
+    let mut dl = base;
+    let mut cuts = 0;
+    while lambda_done < 1.0 - 1e-12 {
+        let lambda = (lambda_done + dl).min(1.0);
+        let x_start = x.clone();
+        let mut step = StepReport {
+            load_factor: lambda,
+            converged: false,
+            iterations: vec![],
+        };
+        let mut failure = None;
+        for it in 0..=settings.max_iterations {
+            let norms = problem.evaluate(&x, lambda, &mut r, true)?;
+            let rel = norms.relative();
+            step.iterations.push(Iteration {
+                iteration: it,
+                relative_residual: rel,
+            });
+            if settings.verbose {
+                eprintln!("  step λ={lambda:.4} iter {it:2}  residual {rel:.3e}");
+            }
+            if !rel.is_finite() {
+                failure = Some("non-finite residual".to_string());
+                break;
+            }
+            if it > 0 && rel <= settings.tolerance || norms.residual == 0.0 {
+                step.converged = true;
+                break;
+            }
+            if it == settings.max_iterations {
+                failure = Some(format!(
+                    "no convergence in {} iterations",
+                    settings.max_iterations
+                ));
+                break;
+            }
+            if let Err(e) = lin.factor(&problem.asm.matrix) {
+                failure = Some(e.to_string());
+                break;
+            }
+            report.factorizations += 1;
+            for v in r.iter_mut() {
+                *v = -*v;
+            }
+            lin.solve(&mut r)?;
+            for (xi, dx) in x.iter_mut().zip(&r) {
+                *xi += dx;
+            }
+        }
+        report.total_iterations += step.iterations.len() - 1;
+        let converged = step.converged;
+        report.steps.push(step);
+        if converged {
+            lambda_done = lambda;
+            dl = (2.0 * dl).min(base); // grow back after a cut
+            continue;
+        }
+        let why = failure.unwrap_or_default();
+        if cuts >= settings.max_cuts {
+            return Err(Error::solve(format!(
+                "Newton failed at load factor {lambda:.4} after {cuts} step cuts: {why}"
+            )));
+        }
+        if settings.verbose {
+            eprintln!("  step to λ={lambda:.4} failed ({why}); cutting the step");
+        }
+        cuts += 1;
+        dl *= 0.5;
+        x = x_start;
+    }
+    // leave the problem at the converged state
+    problem.evaluate(&x, 1.0, &mut r, false)?;
+    report.symbolic_factorizations = lin.symbolic_count;
+    Ok(report)
+}
