@@ -177,3 +177,51 @@ enum Orientation {
     Negative,
     Degenerate(&'static str),
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn square(b: &mut MeshBuilder, pts: [[f64; 2]; 4]) -> Vec<usize> {
+        pts.iter().map(|&p| b.add_node(p)).collect()
+    }
+
+    #[test]
+    fn clockwise_cells_are_reoriented() {
+        let mut b = MeshBuilder::new("t.msh");
+        let n = square(&mut b, [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]]);
+        b.add_cell(CellKind::Quad4, &[n[0], n[3], n[2], n[1]], 7);
+        b.add_cell(CellKind::Tri3, &[n[0], n[1], n[2]], 8);
+        let m = b.finish().unwrap();
+        assert_eq!(m.reoriented, 1);
+        assert_eq!(m.cell_nodes(0), &[n[0], n[1], n[2], n[3]]);
+    }
+
+    #[test]
+    fn zero_area_cell_is_an_error_naming_it() {
+        let mut b = MeshBuilder::new("t.msh");
+        let n = square(&mut b, [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [3.0, 0.0]]);
+        b.add_cell(CellKind::Tri3, &[n[0], n[1], n[2]], 42);
+        let e = b.finish().unwrap_err().to_string();
+        assert_eq!(e, "t.msh: cell 42 (Tri3) is of zero area");
+    }
+
+    #[test]
+    fn tangled_cell_is_an_error_naming_it() {
+        let mut b = MeshBuilder::new("t.msh");
+        // bow-tie quadrilateral
+        let n = square(&mut b, [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
+        b.add_cell(CellKind::Quad4, &n, 5);
+        let e = b.finish().unwrap_err().to_string();
+        assert_eq!(e, "t.msh: cell 5 (Quad4) is inverted or tangled (its Jacobian changes sign or vanishes)");
+    }
+
+    #[test]
+    fn out_of_range_node_is_an_error() {
+        let mut b = MeshBuilder::new("t.msh");
+        b.add_node([0.0, 0.0]);
+        b.add_cell(CellKind::Seg2, &[0, 3], 1);
+        let e = b.finish().unwrap_err().to_string();
+        assert_eq!(e, "t.msh: cell 1 (Seg2) refers to node 4 but the mesh has 1 nodes");
+    }
+}
