@@ -67,7 +67,10 @@ fn rates(kind: CellKind) -> (f64, f64) {
     let l2: Vec<f64> = r.iter().map(|t| t.1).collect();
     let en: Vec<f64> = r.iter().map(|t| t.2).collect();
     let rates = (fitted_rate(&h, &l2), fitted_rate(&h, &en));
-    println!("{kind}: L2 {l2:.3e?} rate {:.3}; energy {en:.3e?} rate {:.3}", rates.0, rates.1);
+    println!(
+        "{kind}: L2 {l2:?} rate {:.3}; energy {en:?} rate {:.3}",
+        rates.0, rates.1
+    );
     rates
 }
 

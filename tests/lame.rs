@@ -15,7 +15,10 @@ fn u_r(r: f64) -> f64 {
     (1.0 + NU) / E * P * A * A / (B * B - A * A) * ((1.0 - 2.0 * NU) * r + B * B / r)
 }
 
-fn max_relative_error(toml_text: &str, radius_of: impl Fn([f64; 2], [f64; 2]) -> (f64, f64)) -> f64 {
+fn max_relative_error(
+    toml_text: &str,
+    radius_of: impl Fn([f64; 2], [f64; 2]) -> (f64, f64),
+) -> f64 {
     let case: CaseFile = toml::from_str(toml_text).unwrap();
     let mesh = build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
     let out = run(&case, &mesh, false).unwrap();

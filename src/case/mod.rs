@@ -261,14 +261,9 @@ pub struct Outcome {
     pub probes: Vec<(String, f64)>,
 }
 
-/// Value of a probe: mean of the field over the nodes of its group.
-pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]]) -> Result<f64> {
-    let mesh = problem.mesh;
-    let what = format!("probe '{}'", spec.name);
-    let nodes = mesh
-        .node_group(&spec.group)
-        .map_err(|e| Error::model(format!("{what}: {e}")))?;
-    let comp = match spec.field.as_str() {
+/// Stress component of a probe field (4 = von Mises), None for displacements.
+fn probe_component(spec: &schema::ProbeSpec) -> Result<Option<usize>> {
+    Ok(match spec.field.as_str() {
         "dx" | "dy" => None,
         "sixx" => Some(0),
         "siyy" => Some(1),
@@ -277,10 +272,21 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
         "vmis" => Some(4),
         other => {
             return Err(Error::model(format!(
-                "{what}: field '{other}' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis"
+                "probe '{}': field '{other}' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis",
+                spec.name
             )))
         }
-    };
+    })
+}
+
+/// Value of a probe: mean of the field over the nodes of its group.
+pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]]) -> Result<f64> {
+    let mesh = problem.mesh;
+    let what = format!("probe '{}'", spec.name);
+    let nodes = mesh
+        .node_group(&spec.group)
+        .map_err(|e| Error::model(format!("{what}: {e}")))?;
+    let comp = probe_component(spec)?;
     let values: Vec<f64> = match comp {
         None => {
             let c = if spec.field == "dx" { 0 } else { 1 };

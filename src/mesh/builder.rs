@@ -213,7 +213,10 @@ mod tests {
         let n = square(&mut b, [[0.0, 0.0], [1.0, 1.0], [1.0, 0.0], [0.0, 1.0]]);
         b.add_cell(CellKind::Quad4, &n, 5);
         let e = b.finish().unwrap_err().to_string();
-        assert_eq!(e, "t.msh: cell 5 (Quad4) is inverted or tangled (its Jacobian changes sign or vanishes)");
+        assert_eq!(
+            e,
+            "t.msh: cell 5 (Quad4) is inverted or tangled (its Jacobian changes sign or vanishes)"
+        );
     }
 
     #[test]
@@ -222,6 +225,9 @@ mod tests {
         b.add_node([0.0, 0.0]);
         b.add_cell(CellKind::Seg2, &[0, 3], 1);
         let e = b.finish().unwrap_err().to_string();
-        assert_eq!(e, "t.msh: cell 1 (Seg2) refers to node 4 but the mesh has 1 nodes");
+        assert_eq!(
+            e,
+            "t.msh: cell 1 (Seg2) refers to node 4 but the mesh has 1 nodes"
+        );
     }
 }

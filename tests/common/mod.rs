@@ -21,7 +21,12 @@ pub fn model(m: Modelisation, young: f64, nu: f64) -> SolidModel {
 }
 
 /// Solves with `fixed` (dof, value) imposed and external loads `fext`; returns the problem.
-pub fn solve_elastic<'m>(mesh: &'m Mesh, sm: SolidModel, fixed: &[(usize, f64)], fext: Vec<f64>) -> SolidProblem<'m> {
+pub fn solve_elastic<'m>(
+    mesh: &'m Mesh,
+    sm: SolidModel,
+    fixed: &[(usize, f64)],
+    fext: Vec<f64>,
+) -> SolidProblem<'m> {
     let cells: Vec<usize> = mesh.cells_of_dim(2).collect();
     let models = vec![sm; cells.len()];
     let mut used = vec![false; 2 * mesh.num_nodes()];

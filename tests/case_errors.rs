@@ -1,0 +1,146 @@
+//! Bad case files give errors that name the key, group or entry and list what is valid.
+
+use std::path::PathBuf;
+use tribo::case;
+
+const GOOD: &str = r#"
+[mesh]
+generator = "rectangle"
+width = 2.0
+height = 1.0
+nx = 4
+ny = 2
+cell = "Quad4"
+[[material]]
+group = "Body"
+E = 1000.0
+nu = 0.3
+[[displacement]]
+group = "Left"
+dx = 0.0
+dy = 0.0
+[[force]]
+group = "TopRight"
+fy = -1.0
+"#;
+
+fn write_case(name: &str, text: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("tribo-case-tests-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+fn error_of(name: &str, text: &str) -> String {
+    let p = write_case(name, text);
+    let (c, dir) = match case::load(&p) {
+        Ok(v) => v,
+        Err(e) => return e.to_string(),
+    };
+    let mesh = match case::build_mesh(&c.mesh, &dir) {
+        Ok(m) => m,
+        Err(e) => return e.to_string(),
+    };
+    match case::run(&c, &mesh, false) {
+        Ok(_) => panic!("{name}: expected an error"),
+        Err(e) => e.to_string(),
+    }
+}
+
+#[test]
+fn good_case_runs() {
+    let p = write_case("good.toml", GOOD);
+    let (c, dir) = case::load(&p).unwrap();
+    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
+    let out = case::run(&c, &mesh, false).unwrap();
+    assert!(out.report.total_iterations >= 1);
+}
+
+#[test]
+fn unknown_key_names_it_and_lists_valid_keys() {
+    let e = error_of(
+        "unknown.toml",
+        &GOOD.replace("nu = 0.3", "nu = 0.3\ndensity = 7.8"),
+    );
+    assert!(e.contains("unknown.toml"), "{e}");
+    assert!(e.contains("line 13"), "{e}");
+    assert!(
+        e.contains("unknown field `density`, expected one of `group`, `E`, `nu`"),
+        "{e}"
+    );
+}
+
+#[test]
+fn missing_group_lists_the_groups() {
+    let e = error_of(
+        "group.toml",
+        &GOOD.replace("group = \"Left\"", "group = \"Clamp\""),
+    );
+    assert_eq!(
+        e,
+        "[[displacement]]: group 'Clamp' is not in the mesh; groups are: Body, Bottom, BottomLeft, \
+         BottomRight, Left, Right, Top, TopLeft, TopRight"
+    );
+}
+
+#[test]
+fn negative_young_modulus_is_rejected() {
+    let e = error_of("young.toml", &GOOD.replace("E = 1000.0", "E = -5.0"));
+    assert_eq!(
+        e,
+        "[[material]] for group 'Body': Young's modulus E must be positive, got -5"
+    );
+}
+
+#[test]
+fn missing_material_is_rejected() {
+    let e = error_of(
+        "nomat.toml",
+        &GOOD.replace("group = \"Body\"", "group = \"Top\""),
+    );
+    assert_eq!(
+        e,
+        "[[material]] for group 'Top': the group is not made of 2D cells"
+    );
+}
+
+#[test]
+fn rigid_body_mode_is_reported() {
+    let e = error_of("free.toml", &GOOD.replace("dy = 0.0\n", ""));
+    assert!(e.starts_with("Newton failed at load factor"), "{e}");
+    assert!(e.contains("rigid-body mode"), "{e}");
+}
+
+#[test]
+fn unknown_generator_and_missing_keys() {
+    let e = error_of("gen.toml", &GOOD.replace("\"rectangle\"", "\"disc\""));
+    assert_eq!(
+        e,
+        "[mesh] unknown generator 'disc'; generators are: ssnp154, rectangle, ring"
+    );
+    let e = error_of("nx.toml", &GOOD.replace("nx = 4\n", ""));
+    assert_eq!(e, "[mesh] generator 'rectangle' needs the key 'nx'");
+}
+
+#[test]
+fn bad_probe_field_is_rejected_before_solving() {
+    let text = format!(
+        "{GOOD}\n[[output.probe]]\nname = \"tip\"\ngroup = \"TopRight\"\nfield = \"temperature\"\n"
+    );
+    let e = error_of("probe.toml", &text);
+    assert_eq!(
+        e,
+        "probe 'tip': field 'temperature' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis"
+    );
+}
+
+#[test]
+fn missing_mesh_file_names_it() {
+    let e = error_of(
+        "file.toml",
+        "[mesh]\nfile = \"nowhere.msh\"\n[[material]]\ngroup = \"Body\"\nE = 1.0\nnu = 0.3\n",
+    );
+    assert!(e.contains("nowhere.msh"), "{e}");
+    assert!(e.contains("No such file"), "{e}");
+}
