@@ -1,0 +1,72 @@
+//! Newton converges quadratically on a geometrically nonlinear problem: a slender cantilever
+//! (large kinematics) bent by a tip load in one step.
+
+use tribo::case::{build_mesh, build_problem, schema::CaseFile};
+use tribo::solver::linear::Method;
+use tribo::solver::newton::{solve, NewtonSettings};
+
+#[test]
+fn newton_converges_quadratically_with_large_kinematics() {
+    let text = r#"
+[mesh]
+generator = "rectangle"
+width = 10.0
+height = 1.0
+nx = 20
+ny = 2
+cell = "Quad8"
+[model]
+kinematics = "large"
+[[material]]
+group = "Body"
+E = 1000.0
+nu = 0.3
+[[displacement]]
+group = "Left"
+dx = 0.0
+dy = 0.0
+[[force]]
+group = "TopRight"
+fy = -0.5
+"#;
+    let case: CaseFile = toml::from_str(text).unwrap();
+    let mesh = build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
+    let mut p = build_problem(&case, &mesh).unwrap();
+    let settings = NewtonSettings {
+        steps: 1,
+        tolerance: 1e-13,
+        max_iterations: 30,
+        ..Default::default()
+    };
+    let report = solve(&mut p, &settings, Method::Cholesky).unwrap();
+    let tip = mesh.single_node("TopRight").unwrap();
+    let deflection = -p.u[2 * tip + 1];
+    // Geometrically nonlinear regime: deflection of the order of 10 % of the length.
+    assert!(
+        deflection > 0.5 && deflection < 5.0,
+        "deflection {deflection}"
+    );
+    let r: Vec<f64> = report.steps[0]
+        .iterations
+        .iter()
+        .map(|i| i.relative_residual)
+        .collect();
+    println!("residual history {r:?}");
+    assert!(report.steps[0].converged);
+    // In the asymptotic range (residual between 1e-2 and 1e-12) each iteration roughly
+    // squares the residual: log r_{k+1} / log r_k >= 1.8.
+    let mut checked = 0;
+    for k in 0..r.len() - 1 {
+        if r[k] < 1e-2 && r[k] > 1e-6 && r[k + 1] > 1e-15 {
+            let order = r[k + 1].ln() / r[k].ln();
+            assert!(
+                order >= 1.8,
+                "iteration {k}: {} -> {} (order {order})",
+                r[k],
+                r[k + 1]
+            );
+            checked += 1;
+        }
+    }
+    assert!(checked >= 1, "no iteration in the asymptotic range: {r:?}");
+}
