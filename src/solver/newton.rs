@@ -3,9 +3,29 @@
 //! retried (up to `max_cuts` times). Every iteration is recorded for the report.
 
 use super::linear::{LinearSolver, Method};
-use super::problem::SolidProblem;
+use super::problem::Norms;
+use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use serde::Serialize;
+
+/// What Newton needs from a discrete problem. Contact plugs in here: its statuses are
+/// updated after each correction and a step converges only when none changed.
+pub trait Nonlinear {
+    fn num_unknowns(&self) -> usize;
+    /// The unknowns of the current state (the start of the solve).
+    fn unknowns(&self) -> Vec<f64>;
+    /// Sets the state to (x, λ), writes the residual, assembles the tangent if asked.
+    fn evaluate(&mut self, x: &[f64], lambda: f64, r: &mut [f64], with_tangent: bool) -> Result<Norms>;
+    fn matrix(&self) -> &SparseMatrix;
+    /// Updates discrete statuses (contact) from the new iterate; returns how many changed.
+    fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
+        Ok(0)
+    }
+    /// Called when a load step has converged (commit history variables).
+    fn commit_step(&mut self) {}
+    /// Called when a load step failed and is retried from its start.
+    fn restore_step(&mut self) {}
+}
 
 #[derive(Clone, Debug)]
 pub struct NewtonSettings {
@@ -33,6 +53,8 @@ pub struct Iteration {
     pub iteration: usize,
     /// max-norm of the residual over the displacement rows, divided by the force scale
     pub relative_residual: f64,
+    /// Contact statuses changed by the update after this iteration's correction.
+    pub status_changes: usize,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -57,8 +79,7 @@ pub fn solve(
     method: Method,
 ) -> Result<NewtonReport> {
     let n = problem.num_unknowns();
-    let mut x = vec![0.0; n];
-    problem.asm.dofs.restrict(&problem.u, &mut x);
+    let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
     let mut lin = LinearSolver::new(method);
     let mut report = NewtonReport::default();
@@ -75,12 +96,14 @@ pub fn solve(
             iterations: vec![],
         };
         let mut failure = None;
+        let mut changes = usize::MAX;
         for it in 0..=settings.max_iterations {
             let norms = problem.evaluate(&x, lambda, &mut r, true)?;
             let rel = norms.relative();
             step.iterations.push(Iteration {
                 iteration: it,
                 relative_residual: rel,
+                status_changes: 0,
             });
             if settings.verbose {
                 eprintln!("  step λ={lambda:.4} iter {it:2}  residual {rel:.3e}");
@@ -89,7 +112,7 @@ pub fn solve(
                 failure = Some("non-finite residual".to_string());
                 break;
             }
-            if it > 0 && rel <= settings.tolerance || norms.residual == 0.0 {
+            if it > 0 && changes == 0 && (rel <= settings.tolerance || norms.residual == 0.0) {
                 step.converged = true;
                 break;
             }
@@ -100,7 +123,7 @@ pub fn solve(
                 ));
                 break;
             }
-            if let Err(e) = lin.factor(&problem.asm.matrix) {
+            if let Err(e) = lin.factor(problem.matrix()) {
                 failure = Some(e.to_string());
                 break;
             }
@@ -112,11 +135,17 @@ pub fn solve(
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
             }
+            changes = problem.update_status(&x, lambda)?;
+            step.iterations.last_mut().unwrap().status_changes = changes;
+            if settings.verbose && changes > 0 {
+                eprintln!("                        {changes} contact status changes");
+            }
         }
         report.total_iterations += step.iterations.len() - 1;
         let converged = step.converged;
         report.steps.push(step);
         if converged {
+            problem.commit_step();
             lambda_done = lambda;
             dl = (2.0 * dl).min(base); // grow back after a cut
             continue;
@@ -133,6 +162,7 @@ pub fn solve(
         cuts += 1;
         dl *= 0.5;
         x = x_start;
+        problem.restore_step();
     }
     // leave the problem at the converged state
     problem.evaluate(&x, 1.0, &mut r, false)?;

@@ -1,7 +1,9 @@
 //! `SolidProblem`: the discrete equilibrium of elastic bodies, R(x, λ) = Tᵀ(f_int(u) − λ f_ext)
 //! with u = T x + λ g, plus reactions at the imposed dofs.
 
+use crate::assembly::matrix::SparseMatrix;
 use crate::assembly::Assembler;
+use crate::solver::newton::Nonlinear;
 use crate::error::Result;
 use crate::mesh::Mesh;
 
@@ -52,7 +54,7 @@ impl<'m> SolidProblem<'m> {
     }
 
     /// Sets x and λ, assembles, writes the reduced residual into `r`.
-    pub fn evaluate(
+    pub fn evaluate_solid(
         &mut self,
         x: &[f64],
         lambda: f64,
@@ -94,5 +96,22 @@ impl<'m> SolidProblem<'m> {
             }
         }
         r
+    }
+}
+
+impl Nonlinear for SolidProblem<'_> {
+    fn num_unknowns(&self) -> usize {
+        self.asm.dofs.num_free
+    }
+    fn unknowns(&self) -> Vec<f64> {
+        let mut x = vec![0.0; self.asm.dofs.num_free];
+        self.asm.dofs.restrict(&self.u, &mut x);
+        x
+    }
+    fn evaluate(&mut self, x: &[f64], lambda: f64, r: &mut [f64], with_tangent: bool) -> Result<Norms> {
+        self.evaluate_solid(x, lambda, r, with_tangent)
+    }
+    fn matrix(&self) -> &SparseMatrix {
+        &self.asm.matrix
     }
 }
