@@ -962,3 +962,780 @@ impl<'a> Parser<'a> {
     }
 }
 
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Quad4 + Tri3 on a surface with two physical groups, Seg2 on a curve, points; a
+    /// surface and a point without physical groups (their elements are dropped), a
+    /// parametric node block, sparse node tags, a skipped section.
+    const BASE41: &str = r#"$MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+4
+0 3 "Corner"
+1 4 "Bottom edge"
+2 1 "Plate"
+2 2 "All"
+$EndPhysicalNames
+$Entities
+2 1 2 0
+1 0 0 0 1 3
+2 2 0 0 0
+1 0 0 0 2 0 0 1 4 2 1 -2
+1 0 0 0 2 1 0 2 1 2 1 1
+2 1 0 0 2 1 0 0 1 1
+$EndEntities
+$Comments
+skipped: $Nodes $Elements 1 2 3
+$EndComments
+$Nodes
+3 6 10 60
+0 1 0 1
+10
+0 0 0
+1 1 1 1
+20
+1 0 0 0.5
+2 1 0 4
+30
+40
+50
+60
+1 1 0
+0 1 0
+2 0 0
+2 1 0
+$EndNodes
+$Elements
+6 7 1 7
+0 1 15 1
+1 10
+0 2 15 1
+2 50
+1 1 1 2
+3 10 20
+4 20 50
+2 1 3 1
+5 10 20 30 40
+2 1 2 1
+6 20 50 30
+2 2 2 1
+7 50 60 30
+$EndElements
+"#;
+
+    /// MSH 2.2: Point1, Seg3, a clockwise Quad8, Tri6; elements without a physical
+    /// group; a skipped $NodeData section.
+    const BASE22: &str = r#"$MeshFormat
+2.2 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+0 3 "Tip"
+1 1 "Edge"
+2 2 "Body"
+$EndPhysicalNames
+$Nodes
+11
+1 0 0 0
+2 2 0 0
+3 2 2 0
+4 0 2 0
+5 1 0 0
+6 2 1 0
+7 1 2 0
+8 0 1 0
+20 4 0 0
+21 3 0 0
+22 3 1 0
+$EndNodes
+$NodeData
+1
+"ignored view"
+1
+0.0
+3
+0
+1
+1
+1 5.0
+$EndNodeData
+$Elements
+6
+1 15 2 3 1 1
+2 8 2 1 1 1 2 5
+3 16 2 2 1 1 4 3 2 8 7 6 5
+4 9 2 2 2 2 20 3 21 22 6
+5 1 0 1 2
+6 1 2 0 1 3 4
+$EndElements
+"#;
+
+    /// Test-only writer of the MSH 4.1 binary encoding (little-endian, 8-byte size_t).
+    #[derive(Default)]
+    struct Bin {
+        buf: Vec<u8>,
+    }
+
+    impl Bin {
+        fn text(&mut self, s: &str) -> &mut Self {
+            self.buf.extend_from_slice(s.as_bytes());
+            self
+        }
+        fn int(&mut self, v: i32) -> &mut Self {
+            self.buf.extend_from_slice(&v.to_le_bytes());
+            self
+        }
+        fn size(&mut self, v: u64) -> &mut Self {
+            self.buf.extend_from_slice(&v.to_le_bytes());
+            self
+        }
+        fn reals(&mut self, v: &[f64]) -> &mut Self {
+            for x in v {
+                self.buf.extend_from_slice(&x.to_le_bytes());
+            }
+            self
+        }
+        fn at(&self) -> usize {
+            self.buf.len()
+        }
+    }
+
+    /// Byte offsets of a few fields of the binary test mesh.
+    struct Marks {
+        /// The 4-byte integer 1 of $MeshFormat.
+        one: usize,
+        /// The tag of node 30 (in the third node block).
+        node_tag_30: usize,
+        /// Node 30 in the nodes of element 5 (the quad).
+        quad_node_30: usize,
+        /// The element type of the quad block.
+        quad_type: usize,
+    }
+
+    /// BASE41 in the binary encoding.
+    fn base41_binary() -> (Vec<u8>, Marks) {
+        let mut w = Bin::default();
+        w.text("$MeshFormat\n4.1 1 8\n");
+        let one = w.at();
+        w.int(1).text("\n$EndMeshFormat\n");
+        w.text("$PhysicalNames\n4\n0 3 \"Corner\"\n1 4 \"Bottom edge\"\n");
+        w.text("2 1 \"Plate\"\n2 2 \"All\"\n$EndPhysicalNames\n");
+        w.text("$Entities\n").size(2).size(1).size(2).size(0);
+        w.int(1).reals(&[0., 0., 0.]).size(1).int(3);
+        w.int(2).reals(&[2., 0., 0.]).size(0);
+        w.int(1).reals(&[0., 0., 0., 2., 0., 0.]).size(1).int(4);
+        w.size(2).int(1).int(-2);
+        w.int(1)
+            .reals(&[0., 0., 0., 2., 1., 0.])
+            .size(2)
+            .int(1)
+            .int(2);
+        w.size(1).int(1);
+        w.int(2)
+            .reals(&[1., 0., 0., 2., 1., 0.])
+            .size(0)
+            .size(1)
+            .int(1);
+        w.text("\n$EndEntities\n");
+        w.text("$Comments\nskipped: $Nodes $Elements 1 2 3\n$EndComments\n");
+        w.text("$Nodes\n").size(3).size(6).size(10).size(60);
+        w.int(0).int(1).int(0).size(1).size(10).reals(&[0., 0., 0.]);
+        w.int(1)
+            .int(1)
+            .int(1)
+            .size(1)
+            .size(20)
+            .reals(&[1., 0., 0., 0.5]);
+        w.int(2).int(1).int(0).size(4);
+        let node_tag_30 = w.at();
+        w.size(30).size(40).size(50).size(60);
+        w.reals(&[1., 1., 0., 0., 1., 0., 2., 0., 0., 2., 1., 0.]);
+        w.text("\n$EndNodes\n");
+        w.text("$Elements\n").size(6).size(7).size(1).size(7);
+        w.int(0).int(1).int(15).size(1).size(1).size(10);
+        w.int(0).int(2).int(15).size(1).size(2).size(50);
+        w.int(1).int(1).int(1).size(2);
+        w.size(3).size(10).size(20).size(4).size(20).size(50);
+        w.int(2).int(1);
+        let quad_type = w.at();
+        w.int(3).size(1).size(5).size(10).size(20);
+        let quad_node_30 = w.at();
+        w.size(30).size(40);
+        w.int(2)
+            .int(1)
+            .int(2)
+            .size(1)
+            .size(6)
+            .size(20)
+            .size(50)
+            .size(30);
+        w.int(2)
+            .int(2)
+            .int(2)
+            .size(1)
+            .size(7)
+            .size(50)
+            .size(60)
+            .size(30);
+        w.text("\n$EndElements\n");
+        let marks = Marks {
+            one,
+            node_tag_30,
+            quad_node_30,
+            quad_type,
+        };
+        (w.buf, marks)
+    }
+
+    fn ok(text: &str) -> Mesh {
+        parse(text.as_bytes(), "t.msh").unwrap()
+    }
+
+    fn err(bytes: &[u8]) -> String {
+        match parse(bytes, "t.msh") {
+            Ok(_) => panic!("parse succeeded"),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    /// 1-based line of the first occurrence of `needle`.
+    fn line_of(text: &str, needle: &str) -> usize {
+        let i = text.find(needle).expect("needle not in text");
+        text[..i].matches('\n').count() + 1
+    }
+
+    /// `text` up to and including the first occurrence of `needle`.
+    fn cut_after<'t>(text: &'t str, needle: &str) -> &'t str {
+        &text[..text.find(needle).expect("needle not in text") + needle.len()]
+    }
+
+    fn replace_once(text: &str, from: &str, to: &str) -> String {
+        assert_eq!(text.matches(from).count(), 1, "'{from}' must occur once");
+        text.replacen(from, to, 1)
+    }
+
+    fn groups(mesh: &Mesh) -> Vec<(&str, Vec<usize>)> {
+        mesh.cell_groups
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.clone()))
+            .collect()
+    }
+
+    fn check_base41(mesh: &Mesh) {
+        assert_eq!(
+            mesh.coords,
+            vec![[0., 0.], [1., 0.], [1., 1.], [0., 1.], [2., 0.], [2., 1.]]
+        );
+        let cells: Vec<(CellKind, Vec<usize>)> = (0..mesh.num_cells())
+            .map(|c| (mesh.kind(c), mesh.cell_nodes(c).to_vec()))
+            .collect();
+        assert_eq!(
+            cells,
+            vec![
+                (CellKind::Point1, vec![0]),
+                (CellKind::Seg2, vec![0, 1]),
+                (CellKind::Seg2, vec![1, 4]),
+                (CellKind::Quad4, vec![0, 1, 2, 3]),
+                (CellKind::Tri3, vec![1, 4, 2]),
+            ]
+        );
+        assert_eq!(
+            groups(mesh),
+            vec![
+                ("All", vec![3, 4]),
+                ("Bottom edge", vec![1, 2]),
+                ("Corner", vec![0]),
+                ("Plate", vec![3, 4]),
+            ]
+        );
+        assert!(mesh.node_groups.is_empty());
+        assert_eq!(mesh.reoriented, 0);
+        assert_eq!(mesh.single_node("Corner").unwrap(), 0);
+        assert_eq!(mesh.group_dim("Bottom edge"), Some(1));
+    }
+
+    #[test]
+    fn ascii_41() {
+        check_base41(&ok(BASE41));
+        // CRLF line ends and extra blank lines are fine.
+        check_base41(&ok(&BASE41.replace('\n', "\r\n\r\n")));
+    }
+
+    #[test]
+    fn binary_41() {
+        let (bytes, _) = base41_binary();
+        let mesh = parse(&bytes, "b.msh").unwrap();
+        check_base41(&mesh);
+    }
+
+    #[test]
+    fn ascii_22_with_quadratic_cells() {
+        let mesh = ok(BASE22);
+        assert_eq!(mesh.num_nodes(), 11);
+        assert_eq!(mesh.coords[8], [4., 0.]);
+        assert_eq!(mesh.coords[10], [3., 1.]);
+        let cells: Vec<(CellKind, Vec<usize>)> = (0..mesh.num_cells())
+            .map(|c| (mesh.kind(c), mesh.cell_nodes(c).to_vec()))
+            .collect();
+        assert_eq!(
+            cells,
+            vec![
+                (CellKind::Point1, vec![0]),
+                (CellKind::Seg3, vec![0, 1, 4]),
+                // Given clockwise (0, 3, 2, 1, 7, 6, 5, 4), reordered.
+                (CellKind::Quad8, vec![0, 1, 2, 3, 4, 5, 6, 7]),
+                (CellKind::Tri6, vec![1, 8, 2, 9, 10, 5]),
+            ]
+        );
+        assert_eq!(mesh.reoriented, 1);
+        assert_eq!(
+            groups(&mesh),
+            vec![("Body", vec![2, 3]), ("Edge", vec![1]), ("Tip", vec![0]),]
+        );
+    }
+
+    #[test]
+    fn clockwise_quad_is_reoriented_and_no_groups_keep_all_cells() {
+        let text = "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4 1 4\n2 1 0 4\n\
+                    1\n2\n3\n4\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n$EndNodes\n\
+                    $Elements\n1 1 1 1\n2 1 3 1\n1 1 4 3 2\n$EndElements\n";
+        let mesh = ok(text);
+        assert_eq!(mesh.num_cells(), 1);
+        assert_eq!(mesh.kind(0), CellKind::Quad4);
+        assert_eq!(mesh.cell_nodes(0), &[0, 1, 2, 3]);
+        assert_eq!(mesh.reoriented, 1);
+        assert!(mesh.cell_groups.is_empty());
+    }
+
+    #[test]
+    fn tiny_z_is_ignored() {
+        let text = replace_once(BASE41, "2 1 0\n$EndNodes", "2 1 1e-15\n$EndNodes");
+        check_base41(&ok(&text));
+    }
+
+    #[test]
+    fn truncated_ascii() {
+        let t = cut_after(BASE41, "2 1 \"Plate\"\n");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $PhysicalNames \
+                 (expected physical group dimension)",
+                line_of(BASE41, "2 1 \"Plate\"")
+            )
+        );
+        let t = cut_after(BASE41, "10\n0 0");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $Nodes (expected z coordinate)",
+                line_of(BASE41, "10\n0 0") + 1
+            )
+        );
+        let t = cut_after(BASE41, "5 10 20 30");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $Elements (expected node tag)",
+                line_of(BASE41, "5 10 20 30")
+            )
+        );
+        let t = cut_after(BASE41, "7 50 60 30\n");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $Elements (expected $EndElements)",
+                line_of(BASE41, "7 50 60 30")
+            )
+        );
+        let t = cut_after(BASE22, "4 0 2 0\n");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $Nodes (expected node number)",
+                line_of(BASE22, "4 0 2 0")
+            )
+        );
+        let t = cut_after(BASE41, "$Comments\n");
+        assert_eq!(
+            err(t.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file (expected $EndComments)",
+                line_of(BASE41, "$Comments")
+            )
+        );
+        assert_eq!(err(b""), "t.msh: empty file: not a Gmsh MSH file");
+        assert_eq!(
+            err(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n"),
+            "t.msh: no $Nodes section"
+        );
+        let t = cut_after(BASE41, "$EndNodes\n");
+        assert_eq!(err(t.as_bytes()), "t.msh: no $Elements section");
+    }
+
+    #[test]
+    fn truncated_binary() {
+        let (bytes, m) = base41_binary();
+        assert_eq!(
+            err(&bytes[..m.node_tag_30 + 3]),
+            format!(
+                "t.msh (byte {}): unexpected end of file in $Nodes (expected node tag)",
+                m.node_tag_30
+            )
+        );
+        assert_eq!(
+            err(&bytes[..m.quad_node_30 + 9]),
+            format!(
+                "t.msh (byte {}): unexpected end of file in $Elements (expected node tag)",
+                m.quad_node_30 + 8
+            )
+        );
+        assert_eq!(
+            err(&bytes[..m.one + 2]),
+            format!(
+                "t.msh (byte {}): unexpected end of file in $MeshFormat \
+                 (expected the integer 1 in binary)",
+                m.one
+            )
+        );
+        let end = bytes.len() - "$EndElements\n".len();
+        assert_eq!(
+            err(&bytes[..end]),
+            format!(
+                "t.msh (byte {end}): unexpected end of file in $Elements (expected $EndElements)"
+            )
+        );
+    }
+
+    #[test]
+    fn binary_errors() {
+        let (bytes, m) = base41_binary();
+        let mut b = bytes.clone();
+        b[m.quad_node_30..m.quad_node_30 + 8].copy_from_slice(&99u64.to_le_bytes());
+        assert_eq!(
+            err(&b),
+            format!(
+                "t.msh (byte {}): element 5 refers to node 99, which is not in $Nodes",
+                m.quad_node_30
+            )
+        );
+        let mut b = bytes.clone();
+        b[m.quad_type..m.quad_type + 4].copy_from_slice(&4i32.to_le_bytes());
+        assert_eq!(
+            err(&b),
+            format!(
+                "t.msh (byte {}): element type 4 (4-node tetrahedron) is not supported; \
+                 supported Gmsh element types are {SUPPORTED_TYPES}",
+                m.quad_type
+            )
+        );
+        let mut b = bytes.clone();
+        b[m.one..m.one + 4].copy_from_slice(&1i32.to_be_bytes());
+        assert_eq!(
+            err(&b),
+            format!(
+                "t.msh (byte {}): big-endian binary files are not supported",
+                m.one
+            )
+        );
+        // A huge count must fail cleanly, without a huge allocation.
+        let mut b = bytes.clone();
+        let count = m.node_tag_30 - 8;
+        b[count..count + 8].copy_from_slice(&(u64::MAX / 2).to_le_bytes());
+        assert!(err(&b).starts_with("t.msh (byte "));
+    }
+
+    #[test]
+    fn non_numeric_coordinate() {
+        let text = replace_once(BASE41, "1 1 0\n0 1 0\n", "1 1 0\n0 abc 0\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: expected y coordinate, found 'abc'",
+                line_of(&text, "0 abc 0")
+            )
+        );
+        let text = replace_once(BASE41, "1 1 0\n0 1 0\n", "1 1 0\n0 nan 0\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: node 40 has a non-finite coordinate",
+                line_of(&text, "0 nan 0")
+            )
+        );
+    }
+
+    #[test]
+    fn unsupported_element_type() {
+        let text = replace_once(
+            BASE41,
+            "2 1 3 1\n5 10 20 30 40\n",
+            "2 1 10 1\n5 10 20 30 40 50 60 10 20 30\n",
+        );
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: element type 10 (9-node quadrangle) is not supported; supported \
+                 Gmsh element types are 15 (Point1), 1 (Seg2), 8 (Seg3), 2 (Tri3), \
+                 9 (Tri6), 3 (Quad4), 16 (Quad8)",
+                line_of(&text, "2 1 10 1")
+            )
+        );
+        let text = replace_once(BASE22, "5 1 0 1 2", "5 4 0 1 2 3 4");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: element type 4 (4-node tetrahedron) is not supported; \
+                 supported Gmsh element types are {SUPPORTED_TYPES}",
+                line_of(&text, "5 4 0 1 2 3 4")
+            )
+        );
+        let text = replace_once(BASE22, "5 1 0 1 2", "5 99 0 1 2");
+        assert!(err(text.as_bytes()).contains("element type 99 is not supported;"));
+    }
+
+    #[test]
+    fn missing_physical_name() {
+        let text = replace_once(BASE41, "4\n0 3 \"Corner\"\n", "3\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            "t.msh: physical group 3 (dim 0) has no name in $PhysicalNames"
+        );
+        let text = replace_once(BASE22, "2 2 \"Body\"\n", "1 2 \"Body\"\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            "t.msh: physical group 2 (dim 2) has no name in $PhysicalNames"
+        );
+        let text = replace_once(BASE41, "\"All\"", "All");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: expected a physical name in double quotes, found 'All'",
+                line_of(&text, "2 2 All")
+            )
+        );
+    }
+
+    #[test]
+    fn unknown_node_tag() {
+        let text = replace_once(BASE41, "6 20 50 30", "6 20 55 30");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: element 6 refers to node 55, which is not in $Nodes",
+                line_of(&text, "6 20 55 30")
+            )
+        );
+        let text = replace_once(BASE22, "2 8 2 1 1 1 2 5", "2 8 2 1 1 1 2 9");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: element 2 refers to node 9, which is not in $Nodes",
+                line_of(&text, "2 8 2 1 1 1 2 9")
+            )
+        );
+    }
+
+    #[test]
+    fn unsupported_versions() {
+        for v in ["3.0", "4.0", "2.1", "4"] {
+            let text = replace_once(BASE41, "4.1 0 8", &format!("{v} 0 8"));
+            assert_eq!(
+                err(text.as_bytes()),
+                format!(
+                    "t.msh:2: unsupported MSH version {v}; supported versions are 4.1 \
+                     (ASCII or binary) and 2.2 (ASCII)"
+                )
+            );
+        }
+        let text = replace_once(BASE22, "2.2 0 8", "2.2 1 8");
+        assert_eq!(
+            err(text.as_bytes()),
+            "t.msh:2: binary MSH 2.2 files are not supported; supported versions are 4.1 \
+             (ASCII or binary) and 2.2 (ASCII)"
+        );
+        assert_eq!(
+            err(b"solid cube\nfacet normal 0 0 1\n"),
+            "t.msh:1: not a Gmsh MSH file: expected $MeshFormat, found 'solid'"
+        );
+    }
+
+    #[test]
+    fn missing_or_wrong_end_marker() {
+        let text = replace_once(BASE41, "$EndElements\n", "");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: unexpected end of file in $Elements (expected $EndElements)",
+                line_of(&text, "7 50 60 30")
+            )
+        );
+        let text = replace_once(BASE41, "$EndElements\n", "$EndElement\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: expected $EndElements, found '$EndElement'",
+                line_of(&text, "$EndElement")
+            )
+        );
+        // One more element than the count says.
+        let text = replace_once(BASE22, "$Elements\n6\n", "$Elements\n5\n");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: expected $EndElements, found '6' \
+                 (do the counts in the section match its data?)",
+                line_of(&text, "6 1 2 0 1 3 4")
+            )
+        );
+    }
+
+    #[test]
+    fn counts_that_do_not_match() {
+        let text = replace_once(BASE41, "6 7 1 7", "6 8 1 8");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: the $Elements header announces 8 elements but its blocks hold 7",
+                line_of(&text, "6 8 1 8")
+            )
+        );
+        let text = replace_once(BASE41, "3 6 10 60", "3 5 10 60");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: the $Nodes header announces 5 nodes but its blocks hold 6",
+                line_of(&text, "3 5 10 60")
+            )
+        );
+    }
+
+    #[test]
+    fn other_errors() {
+        let text = replace_once(BASE41, "2 1 0\n$EndNodes", "2 1 0.5\n$EndNodes");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: node 60 has z = 0.5: 3D meshes are not supported \
+                 (all nodes must lie in the plane z = 0)",
+                line_of(&text, "2 1 0.5")
+            )
+        );
+        let text = replace_once(BASE22, "20 4 0 0", "2 4 0 0");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: node tag 2 appears twice in $Nodes",
+                line_of(&text, "2 4 0 0")
+            )
+        );
+        // A degenerate cell is rejected by the mesh builder, naming the element.
+        let text = replace_once(BASE41, "5 10 20 30 40", "5 10 20 20 40");
+        assert_eq!(
+            err(text.as_bytes()),
+            "t.msh: cell 5 (Quad4) is inverted or tangled (its Jacobian changes sign or vanishes)"
+        );
+        let text = replace_once(BASE41, "$Nodes\n", "$EndFoo\n");
+        assert!(err(text.as_bytes()).contains("'$EndFoo' closes no open section"));
+    }
+
+    #[test]
+    fn read_names_the_file() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/src/mesh/gmsh.rs");
+        let e = read(Path::new(path)).unwrap_err().to_string();
+        assert_eq!(
+            e,
+            format!("{path}:1: not a Gmsh MSH file: expected $MeshFormat, found '//!'")
+        );
+        let missing = concat!(env!("CARGO_MANIFEST_DIR"), "/no/such/file.msh");
+        let e = read(Path::new(missing)).unwrap_err().to_string();
+        assert!(e.starts_with(&format!("{missing}: ")), "{e}");
+    }
+
+    /// xorshift64: a small deterministic generator for the mutation test.
+    struct XorShift(u64);
+
+    impl XorShift {
+        fn next(&mut self) -> u64 {
+            let mut x = self.0;
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            self.0 = x;
+            x
+        }
+        fn below(&mut self, n: usize) -> usize {
+            (self.next() % n as u64) as usize
+        }
+    }
+
+    fn parse_does_not_panic(bytes: &[u8]) -> Option<bool> {
+        std::panic::catch_unwind(|| parse(bytes, "fuzz.msh").is_ok()).ok()
+    }
+
+    #[test]
+    fn truncations_and_mutations_never_panic() {
+        let (binary, _) = base41_binary();
+        let inputs: [(&str, Vec<u8>); 3] = [
+            ("4.1 ASCII", BASE41.as_bytes().to_vec()),
+            ("2.2 ASCII", BASE22.as_bytes().to_vec()),
+            ("4.1 binary", binary),
+        ];
+        let mut rng = XorShift(0x9E37_79B9_7F4A_7C15);
+        for (name, data) in &inputs {
+            assert_eq!(parse_does_not_panic(data), Some(true), "{name}");
+            // Every truncation short of the final $End marker is an error.
+            let full = data.len()
+                - data
+                    .iter()
+                    .rev()
+                    .take_while(|b| b.is_ascii_whitespace())
+                    .count();
+            for cut in 0..data.len() {
+                match parse_does_not_panic(&data[..cut]) {
+                    None => panic!("{name}: panic when cut at byte {cut}"),
+                    Some(parsed) => assert!(cut >= full || !parsed, "{name}: cut at {cut} parsed"),
+                }
+            }
+            let mut errors = 0;
+            for i in 0..2000 {
+                let mut m = data.clone();
+                for _ in 0..1 + rng.below(3) {
+                    let at = rng.below(m.len());
+                    match rng.below(4) {
+                        0 => m[at] = rng.next() as u8,
+                        1 => m[at] = b"0123456789 -\n.e$"[rng.below(16)],
+                        2 => {
+                            let end = (at + 1 + rng.below(8)).min(m.len());
+                            m.drain(at..end);
+                        }
+                        _ => {
+                            let end = (at + 1 + rng.below(16)).min(m.len());
+                            let piece = m[at..end].to_vec();
+                            let to = rng.below(m.len());
+                            m.splice(to..to, piece);
+                        }
+                    }
+                    if m.is_empty() {
+                        break;
+                    }
+                }
+                match parse_does_not_panic(&m) {
+                    None => panic!(
+                        "{name}: panic on mutation {i}: {:?}",
+                        String::from_utf8_lossy(&m)
+                    ),
+                    Some(false) => errors += 1,
+                    Some(true) => {}
+                }
+            }
+            assert!(
+                errors > 500,
+                "{name}: only {errors} of 2000 mutations were rejected"
+            );
+        }
+    }
+}
