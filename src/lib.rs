@@ -16,6 +16,7 @@
 pub mod assembly;
 pub mod case;
 pub mod cli;
+pub mod contact;
 pub mod error;
 pub mod fem;
 pub mod mesh;

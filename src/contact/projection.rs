@@ -37,22 +37,34 @@ pub fn project(kind: CellKind, x: &[[f64; 2]], p: [f64; 2]) -> Projection {
     let l2 = ab[0] * ab[0] + ab[1] * ab[1];
     let mut xi = 2.0 * ((p[0] - a[0]) * ab[0] + (p[1] - a[1]) * ab[1]) / l2 - 1.0;
     if kind == CellKind::Seg2 {
-        return Projection { xi, converged: true };
+        return Projection {
+            xi,
+            converged: true,
+        };
     }
     for _ in 0..20 {
         let (q, t) = point_and_tangent(kind, x, xi);
         // second derivative of a Seg3: constant
-        let tt = [x[0][0] + x[1][0] - 2.0 * x[2][0], x[0][1] + x[1][1] - 2.0 * x[2][1]];
+        let tt = [
+            x[0][0] + x[1][0] - 2.0 * x[2][0],
+            x[0][1] + x[1][1] - 2.0 * x[2][1],
+        ];
         let d = [p[0] - q[0], p[1] - q[1]];
         let f = d[0] * t[0] + d[1] * t[1];
         let df = -(t[0] * t[0] + t[1] * t[1]) + d[0] * tt[0] + d[1] * tt[1];
         let step = f / df;
         xi -= step;
         if step.abs() < 1e-14 {
-            return Projection { xi, converged: true };
+            return Projection {
+                xi,
+                converged: true,
+            };
         }
     }
-    Projection { xi, converged: false }
+    Projection {
+        xi,
+        converged: false,
+    }
 }
 
 #[cfg(test)]

@@ -61,7 +61,10 @@ impl Surface {
                  it must be one open curve)"
             )));
         }
-        let mut nodes: Vec<usize> = cells.iter().flat_map(|&c| mesh.cell_nodes(c).iter().copied()).collect();
+        let mut nodes: Vec<usize> = cells
+            .iter()
+            .flat_map(|&c| mesh.cell_nodes(c).iter().copied())
+            .collect();
         nodes.sort_unstable();
         nodes.dedup();
         Ok(Surface {
@@ -92,6 +95,7 @@ fn connected(mesh: &Mesh, cells: &[usize]) -> bool {
         comp.insert(a, b);
     }
     let keys: Vec<usize> = comp.keys().copied().collect();
-    let roots: std::collections::HashSet<usize> = keys.into_iter().map(|k| find(&mut comp, k)).collect();
+    let roots: std::collections::HashSet<usize> =
+        keys.into_iter().map(|k| find(&mut comp, k)).collect();
     roots.len() == 1
 }

@@ -15,7 +15,13 @@ pub trait Nonlinear {
     /// The unknowns of the current state (the start of the solve).
     fn unknowns(&self) -> Vec<f64>;
     /// Sets the state to (x, λ), writes the residual, assembles the tangent if asked.
-    fn evaluate(&mut self, x: &[f64], lambda: f64, r: &mut [f64], with_tangent: bool) -> Result<Norms>;
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        with_tangent: bool,
+    ) -> Result<Norms>;
     fn matrix(&self) -> &SparseMatrix;
     /// Updates discrete statuses (contact) from the new iterate; returns how many changed.
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
@@ -74,7 +80,7 @@ pub struct NewtonReport {
 
 /// Solves the problem from its current state to λ = 1.
 pub fn solve(
-    problem: &mut SolidProblem,
+    problem: &mut dyn Nonlinear,
     settings: &NewtonSettings,
     method: Method,
 ) -> Result<NewtonReport> {

@@ -3,9 +3,9 @@
 
 use crate::assembly::matrix::SparseMatrix;
 use crate::assembly::Assembler;
-use crate::solver::newton::Nonlinear;
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::solver::newton::Nonlinear;
 
 pub struct SolidProblem<'m> {
     pub mesh: &'m Mesh,
@@ -108,7 +108,13 @@ impl Nonlinear for SolidProblem<'_> {
         self.asm.dofs.restrict(&self.u, &mut x);
         x
     }
-    fn evaluate(&mut self, x: &[f64], lambda: f64, r: &mut [f64], with_tangent: bool) -> Result<Norms> {
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        with_tangent: bool,
+    ) -> Result<Norms> {
         self.evaluate_solid(x, lambda, r, with_tangent)
     }
     fn matrix(&self) -> &SparseMatrix {
