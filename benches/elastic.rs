@@ -76,14 +76,14 @@ fn main() {
         let t2 = Instant::now();
         lin.factor(&p.asm.matrix).unwrap();
         let t_refac = t2.elapsed().as_secs_f64();
-        let mut rhs = vec![0.0; p.num_unknowns()];
+        let mut rhs = vec![0.0; p.num_free()];
         p.asm.dofs.reduce(&p.fext, &mut rhs);
         let t3 = Instant::now();
         lin.solve(&mut rhs).unwrap();
         let t_solve = t3.elapsed().as_secs_f64();
         println!(
             "{:>9} {:>10} {:>9.3} {:>10.3} {:>10.3} {:>10.3} {:>9.3} {:>10.3} {:>10.0}",
-            p.num_unknowns(),
+            p.num_free(),
             p.asm.matrix.nnz(),
             t_mesh,
             t_asm,

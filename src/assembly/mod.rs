@@ -2,6 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
+//! | `coupled.rs` | solid matrix + contact triplets over extra unknowns, pattern rebuilt on change |
 //! | `dofs.rs` | `DofMap`: free, imposed and linked dofs (elimination) |
 //! | `matrix.rs` | CSC matrix with a fixed pattern, faer view |
 //! | `loads.rs` | nodal forces, edge pressures and tractions |
@@ -10,6 +11,7 @@
 //! are computed once (`Assembler::new`); each assembly only refills values. Element
 //! matrices are computed in parallel blocks and scattered serially (no locking).
 
+pub mod coupled;
 pub mod dofs;
 pub mod loads;
 pub mod matrix;

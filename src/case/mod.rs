@@ -11,6 +11,9 @@ pub mod ssnp154;
 use crate::assembly::dofs::{DofMap, Relation};
 use crate::assembly::loads::{add_edge_load, add_nodal_force, EdgeLoad};
 use crate::assembly::Assembler;
+use crate::contact::point_segment::{self, InitialStatus, Integration, PointToSegment};
+use crate::contact::problem::ContactProblem;
+use crate::contact::surface::Surface;
 use crate::error::{Error, Result};
 use crate::fem::material::{Elastic, Modelisation};
 use crate::fem::solid::{Kinematics, SolidModel};
@@ -254,6 +257,8 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
 /// What a run produces.
 pub struct Outcome {
     pub report: NewtonReport,
+    /// Per contact pair: (slave node, pressure −λ) from the multipliers.
+    pub contact_pressure: Vec<Vec<(usize, f64)>>,
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     /// Nodal stresses averaged over all cells sharing a node.
@@ -324,6 +329,76 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
     Ok(values.iter().sum::<f64>() / values.len() as f64)
 }
 
+/// The contact pairs of a case.
+pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<PointToSegment>> {
+    let mut pairs = vec![];
+    for (i, c) in case.contact.iter().enumerate() {
+        let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
+        if c.slave == c.master {
+            return Err(Error::model(format!(
+                "{what}: slave and master must be different groups"
+            )));
+        }
+        let slave = Surface::from_group(mesh, &c.slave, "slave")
+            .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        let master = Surface::from_group(mesh, &c.master, "master")
+            .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        let integration = match c.integration.as_str() {
+            "gauss" if (1..=10).contains(&c.gauss_points) => Integration::Gauss(c.gauss_points),
+            "gauss" => {
+                return Err(Error::model(format!(
+                    "{what}: gauss_points must be 1 to 10, got {}",
+                    c.gauss_points
+                )))
+            }
+            "nodal" => Integration::Nodal,
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: integration '{other}' is not one of gauss, nodal"
+                )))
+            }
+        };
+        let initial = match c.initial.as_str() {
+            "all" => InitialStatus::All,
+            "closed" => InitialStatus::Closed,
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: initial '{other}' is not one of all, closed"
+                )))
+            }
+        };
+        if !(c.rho > 0.0) {
+            return Err(Error::model(format!(
+                "{what}: rho must be positive, got {}",
+                c.rho
+            )));
+        }
+        match c.formulation.as_str() {
+            "point-to-segment" => {}
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: formulation '{other}' is not one of point-to-segment"
+                )))
+            }
+        }
+        let opts = point_segment::Options {
+            integration,
+            rho: c.rho,
+            initial,
+            ..Default::default()
+        };
+        pairs.push(PointToSegment::new(
+            mesh,
+            slave,
+            master,
+            opts,
+            case.model.modelisation,
+            case.model.thickness,
+        ));
+    }
+    Ok(pairs)
+}
+
 /// Solves a case on a mesh.
 pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     let mut problem = build_problem(case, mesh)?;
@@ -343,7 +418,24 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         verbose,
         ..Default::default()
     };
-    let report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
+    let (report, contact_pressure) = if case.contact.is_empty() {
+        (
+            newton::solve(&mut problem, &settings, Method::Cholesky)?,
+            vec![],
+        )
+    } else {
+        let pairs = build_pairs(case, mesh)?;
+        let mut cp = ContactProblem::new(problem, pairs);
+        let report = newton::solve(&mut cp, &settings, Method::Lu)?;
+        let pressures = cp
+            .pairs
+            .iter()
+            .zip(&cp.mult_base)
+            .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
+            .collect();
+        problem = cp.solid;
+        (report, pressures)
+    };
     let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
     let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
     let mut probes = vec![];
@@ -352,6 +444,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     }
     Ok(Outcome {
         report,
+        contact_pressure,
         reactions: problem.reactions(),
         u: problem.u.clone(),
         stress,

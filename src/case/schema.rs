@@ -27,6 +27,8 @@ pub struct CaseFile {
     #[serde(default)]
     pub relation: Vec<RelationSpec>,
     #[serde(default)]
+    pub contact: Vec<ContactSpec>,
+    #[serde(default)]
     pub solver: SolverSpec,
     #[serde(default)]
     pub output: OutputSpec,
@@ -221,4 +223,43 @@ pub struct ProbeSpec {
     pub field: String,
     /// For stress fields: average the extrapolated values over the cells of this group only.
     pub stress_group: Option<String>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSpec {
+    /// Edge group of the slave surface (carries the multipliers).
+    pub slave: String,
+    /// Edge group of the master surface.
+    pub master: String,
+    /// "point-to-segment" (the reference code's continuous method).
+    #[serde(default = "default_formulation")]
+    pub formulation: String,
+    /// point-to-segment: "gauss" (3 points per slave cell) or "nodal".
+    #[serde(default = "default_integration")]
+    pub integration: String,
+    #[serde(default = "three")]
+    pub gauss_points: usize,
+    /// Augmentation coefficient (stress / length).
+    #[serde(default = "hundred")]
+    pub rho: f64,
+    /// Initial status: "all" points active, or the "closed" ones (gap <= 0).
+    #[serde(default = "default_initial")]
+    pub initial: String,
+}
+
+fn default_formulation() -> String {
+    "point-to-segment".into()
+}
+fn default_integration() -> String {
+    "gauss".into()
+}
+fn three() -> usize {
+    3
+}
+fn hundred() -> f64 {
+    100.0
+}
+fn default_initial() -> String {
+    "all".into()
 }

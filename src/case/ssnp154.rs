@@ -57,6 +57,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         }],
         pressure: vec![],
         traction: vec![],
+        contact: vec![],
         relation: vec![RelationSpec {
             name: "DY(B) = DY(C)".into(),
             terms: vec![

@@ -41,7 +41,7 @@ pub fn info(path: &Path, as_json: bool) -> Result<i32> {
         println!("  {:<12} {}", k.name(), v);
     }
     println!(
-        "  bounding box [{}, {}] x [{}, {}]",
+        "  bounding box [{:.6}, {:.6}] x [{:.6}, {:.6}]",
         lo[0], hi[0], lo[1], hi[1]
     );
     println!(

@@ -24,6 +24,35 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         write_vtu(&f, &mesh, &outcome)?;
         files.push(f.display().to_string());
     }
+    for (i, pressures) in outcome.contact_pressure.iter().enumerate() {
+        let f = out_dir.join(format!("pressure_{}.csv", i + 1));
+        let mut rows: Vec<(f64, String)> = pressures
+            .iter()
+            .map(|&(n, p)| {
+                let x = mesh.coords[n];
+                let (ux, uy) = (outcome.u[2 * n], outcome.u[2 * n + 1]);
+                (
+                    x[0],
+                    format!(
+                        "{},{},{},{},{},{}\n",
+                        n + 1,
+                        x[0],
+                        x[1],
+                        x[0] + ux,
+                        x[1] + uy,
+                        p
+                    ),
+                )
+            })
+            .collect();
+        rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let mut text = String::from("node,x,y,x_deformed,y_deformed,pressure\n");
+        for (_, r) in rows {
+            text.push_str(&r);
+        }
+        write_atomic(&f, text.as_bytes())?;
+        files.push(f.display().to_string());
+    }
     let wall = t0.elapsed().as_secs_f64();
     let mut probes = serde_json::Map::new();
     for (name, v) in &outcome.probes {

@@ -2,7 +2,7 @@
 //!
 //! Contact is not implemented yet, so this runs the elastic stage only: the benchmark's
 //! bodies, supports and load with B and C glued in y (DY(B) = DY(C)), on the linear and
-//! quadratic meshes, small and large kinematics. The values are printed beside the contact
+//! quadratic meshes, small kinematics. The values are printed beside the contact
 //! references for orientation only; they are not expected to match them.
 
 use crate::case::{self, ssnp154};
@@ -43,7 +43,9 @@ pub fn validate(meshes: Option<&Path>, json_out: Option<&Path>, verbose: bool) -
             ),
         };
         let mesh = case::build_mesh(&spec, Path::new(""))?;
-        for kinematics in [Kinematics::Small, Kinematics::Large] {
+        // Glued at one node pair, the load passes through a point: only small strain is
+        // meaningful here (large kinematics buckles the singular point region).
+        for kinematics in [Kinematics::Small] {
             let c = ssnp154::glued_case(spec.clone(), kinematics);
             let t0 = Instant::now();
             let out = case::run(&c, &mesh, verbose)?;

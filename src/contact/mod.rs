@@ -4,6 +4,10 @@
 //! |---|---|
 //! | `surface.rs` | contact surfaces from edge groups: connected chains with outward sides |
 //! | `projection.rs` | closest-point projection on Seg2/Seg3 segments |
+//! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
+//! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 
+pub mod point_segment;
+pub mod problem;
 pub mod projection;
 pub mod surface;

@@ -1,6 +1,7 @@
 //! `SolidProblem`: the discrete equilibrium of elastic bodies, R(x, λ) = Tᵀ(f_int(u) − λ f_ext)
 //! with u = T x + λ g, plus reactions at the imposed dofs.
 
+use crate::assembly::dofs::Role;
 use crate::assembly::matrix::SparseMatrix;
 use crate::assembly::Assembler;
 use crate::error::Result;
@@ -15,6 +16,8 @@ pub struct SolidProblem<'m> {
     /// Current full displacement and internal forces.
     pub u: Vec<f64>,
     pub fint: Vec<f64>,
+    /// f_int + other internal contributions (contact) − λ f_ext, full dofs, last evaluation.
+    pub residual_full: Vec<f64>,
     pub lambda: f64,
 }
 
@@ -45,57 +48,66 @@ impl<'m> SolidProblem<'m> {
             fext,
             u: vec![0.0; n],
             fint: vec![0.0; n],
+            residual_full: vec![0.0; n],
             lambda: 0.0,
         }
     }
 
-    pub fn num_unknowns(&self) -> usize {
+    pub fn num_free(&self) -> usize {
         self.asm.dofs.num_free
     }
 
-    /// Sets x and λ, assembles, writes the reduced residual into `r`.
-    pub fn evaluate_solid(
-        &mut self,
-        x: &[f64],
-        lambda: f64,
-        r: &mut [f64],
-        with_tangent: bool,
-    ) -> Result<Norms> {
+    /// Sets the free unknowns `x` and the load factor, assembles internal forces (and the
+    /// tangent if asked).
+    pub fn set_state(&mut self, x: &[f64], lambda: f64, with_tangent: bool) -> Result<()> {
         self.lambda = lambda;
         self.asm.dofs.expand(x, lambda, &mut self.u);
         self.asm
-            .assemble(self.mesh, &self.u, &mut self.fint, with_tangent)?;
-        let mut full = self.fint.clone();
-        for (f, e) in full.iter_mut().zip(&self.fext) {
-            *f -= lambda * e;
+            .assemble(self.mesh, &self.u, &mut self.fint, with_tangent)
+    }
+
+    /// Residual f_int + extra − λ f_ext reduced to the free unknowns, with its norms.
+    /// `extra` holds further internal forces on the full dofs (e.g. contact).
+    pub fn finish_residual(&mut self, extra: Option<&[f64]>, r: &mut [f64]) -> Norms {
+        let lambda = self.lambda;
+        for d in 0..self.u.len() {
+            self.residual_full[d] =
+                self.fint[d] - lambda * self.fext[d] + extra.map_or(0.0, |e| e[d]);
         }
-        self.asm.dofs.reduce(&full, r);
+        self.asm.dofs.reduce(&self.residual_full, r);
         let residual = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let mut reference = self
             .fext
             .iter()
             .fold(0.0f64, |m, v| m.max((lambda * v).abs()));
         for (d, role) in self.asm.dofs.roles.iter().enumerate() {
-            if !matches!(role, crate::assembly::dofs::Role::Free(_)) {
-                reference = reference.max(full[d].abs());
+            if !matches!(role, Role::Free(_)) {
+                reference = reference.max(self.residual_full[d].abs());
             }
         }
-        Ok(Norms {
+        Norms {
             residual,
             reference,
-        })
+        }
     }
 
-    /// Reactions at the imposed and linked dofs (full vector, 0 at free dofs): the force the
-    /// supports exert, f_int − λ f_ext at the current state.
+    /// Reactions at the imposed and linked dofs (full vector, 0 at free dofs): the forces the
+    /// supports exert, at the last evaluated state.
     pub fn reactions(&self) -> Vec<f64> {
         let mut r = vec![0.0; self.u.len()];
         for (d, role) in self.asm.dofs.roles.iter().enumerate() {
-            if !matches!(role, crate::assembly::dofs::Role::Free(_)) {
-                r[d] = self.fint[d] - self.lambda * self.fext[d];
+            if !matches!(role, Role::Free(_)) {
+                r[d] = self.residual_full[d];
             }
         }
         r
+    }
+
+    /// Free unknowns of the current displacement.
+    pub fn free_unknowns(&self) -> Vec<f64> {
+        let mut x = vec![0.0; self.asm.dofs.num_free];
+        self.asm.dofs.restrict(&self.u, &mut x);
+        x
     }
 }
 
@@ -104,9 +116,7 @@ impl Nonlinear for SolidProblem<'_> {
         self.asm.dofs.num_free
     }
     fn unknowns(&self) -> Vec<f64> {
-        let mut x = vec![0.0; self.asm.dofs.num_free];
-        self.asm.dofs.restrict(&self.u, &mut x);
-        x
+        self.free_unknowns()
     }
     fn evaluate(
         &mut self,
@@ -115,7 +125,8 @@ impl Nonlinear for SolidProblem<'_> {
         r: &mut [f64],
         with_tangent: bool,
     ) -> Result<Norms> {
-        self.evaluate_solid(x, lambda, r, with_tangent)
+        self.set_state(x, lambda, with_tangent)?;
+        Ok(self.finish_residual(None, r))
     }
     fn matrix(&self) -> &SparseMatrix {
         &self.asm.matrix

@@ -1,0 +1,118 @@
+//! The matrix of a problem with extra unknowns (contact multipliers) beside the free
+//! displacements: the solid matrix plus contributions given as triplets over "extended"
+//! ids (full displacement dof d < ndof, or extra unknown ndof + k). The combined pattern is
+//! rebuilt only when the set of contributed entries changes; contributions therefore list
+//! every entry that may become non-zero (explicit zeros included).
+
+use super::dofs::DofMap;
+use super::matrix::SparseMatrix;
+
+#[derive(Default)]
+pub struct Triplets {
+    pub entries: Vec<(usize, usize, f64)>,
+}
+
+impl Triplets {
+    pub fn clear(&mut self) {
+        self.entries.clear();
+    }
+    pub fn add(&mut self, row: usize, col: usize, v: f64) {
+        self.entries.push((row, col, v));
+    }
+}
+
+#[derive(Default)]
+pub struct CoupledMatrix {
+    pub matrix: SparseMatrix,
+    /// Position in `matrix.values` of each value of the solid matrix.
+    solid_map: Vec<usize>,
+    /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
+    key: Vec<(usize, usize)>,
+    /// Number of pattern rebuilds (for reports).
+    pub rebuilds: usize,
+}
+
+impl CoupledMatrix {
+    /// Combines `solid` (over the free dofs) with `extra` (extended ids) into `self.matrix`
+    /// over nf + n_extra unknowns.
+    pub fn update(
+        &mut self,
+        solid: &SparseMatrix,
+        dofs: &DofMap,
+        n_extra: usize,
+        extra: &Triplets,
+    ) {
+        let nf = dofs.num_free;
+        let ndof = dofs.num_dofs();
+        let n = nf + n_extra;
+        let mut ex_r = vec![];
+        let mut ex_c = vec![];
+        let expand = |id: usize, out: &mut Vec<(usize, f64)>| {
+            if id < ndof {
+                dofs.expand_dof(id, out);
+            } else {
+                out.clear();
+                out.push((nf + id - ndof, 1.0));
+            }
+        };
+        let mut reduced: Vec<(usize, usize, f64)> = Vec::with_capacity(extra.entries.len());
+        for &(r, c, v) in &extra.entries {
+            expand(r, &mut ex_r);
+            expand(c, &mut ex_c);
+            for &(i, ci) in &ex_r {
+                for &(j, cj) in &ex_c {
+                    reduced.push((j, i, ci * cj * v));
+                }
+            }
+        }
+        reduced.sort_unstable_by_key(|t| (t.0, t.1));
+        let mut key: Vec<(usize, usize)> = reduced.iter().map(|t| (t.0, t.1)).collect();
+        key.dedup();
+        if key != self.key || self.matrix.n != n || self.solid_map.len() != solid.nnz() {
+            self.rebuild(solid, n, &key);
+            self.key = key;
+        }
+        let m = &mut self.matrix;
+        m.values.fill(0.0);
+        for (p, &q) in self.solid_map.iter().enumerate() {
+            m.values[q] += solid.values[p];
+        }
+        for &(col, row, v) in &reduced {
+            let q = m
+                .position(row, col)
+                .expect("pattern holds every contributed entry");
+            m.values[q] += v;
+        }
+    }
+
+    fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {
+        let mut k = 0;
+        let mut cols: Vec<Vec<usize>> = Vec::with_capacity(n);
+        for c in 0..n {
+            let mut rows: Vec<usize> = if c < solid.n {
+                solid.row_idx[solid.col_ptr[c]..solid.col_ptr[c + 1]].to_vec()
+            } else {
+                vec![]
+            };
+            while k < key.len() && key[k].0 == c {
+                rows.push(key[k].1);
+                k += 1;
+            }
+            if rows.is_empty() {
+                rows.push(c);
+            }
+            rows.sort_unstable();
+            rows.dedup();
+            cols.push(rows);
+        }
+        self.matrix = SparseMatrix::from_columns(n, cols.into_iter());
+        self.solid_map.clear();
+        for c in 0..solid.n {
+            for p in solid.col_ptr[c]..solid.col_ptr[c + 1] {
+                self.solid_map
+                    .push(self.matrix.position(solid.row_idx[p], c).unwrap());
+            }
+        }
+        self.rebuilds += 1;
+    }
+}

@@ -1,0 +1,409 @@
+//! The `point-to-segment` formulation: the reference code's "continuous" method
+//! (contact.md §1.1–1.7), reproduced to match its SSNP154 runs A–D.
+//!
+//! Multipliers λ_k on the slave nodes, interpolated with the slave shape functions (λ < 0 in
+//! compression; pressure p = −λ). Contact points are the integration points of the slave
+//! cells (3 Gauss points or the nodes), weighted with the initial slave Jacobian. Each point
+//! is projected on the master surface (nearest master node, then the master cells around
+//! it), giving the inward master normal n and the penetration d = (x_s − x̄_m)·n.
+//! With the augmented multiplier λ̂ = λ − ρ d, a point is active iff λ̂ < 0, and
+//!   active:   r_u += −ω λ̂ B,            r_λ += −ω d N_s
+//!   inactive:                           r_λ += −ω (λ/ρ) N_s
+//! with B = [N_s n ; −N_m n]. The tangent freezes pairing and normal.
+
+use super::projection::{point_and_tangent, project};
+use super::surface::Surface;
+use crate::assembly::coupled::Triplets;
+use crate::fem::element::{shape, MAX_NODES};
+use crate::fem::material::Modelisation;
+use crate::fem::quadrature::gauss_legendre;
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Integration {
+    /// n-point Gauss–Legendre per slave cell.
+    Gauss(usize),
+    /// At the nodes: trapezoid on Seg2, Simpson on Seg3.
+    Nodal,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum InitialStatus {
+    /// Every point starts active (the reference's CONTACT_INIT = OUI).
+    All,
+    /// Points with a non-positive initial gap start active.
+    Closed,
+}
+
+#[derive(Clone, Debug)]
+pub struct Options {
+    pub integration: Integration,
+    /// Augmentation coefficient ρ (the reference's COEF_CONT, 100).
+    pub rho: f64,
+    pub initial: InitialStatus,
+    /// Parametric overshoot beyond which a projection is rejected (TOLE_PROJ_EXT, 0.5).
+    pub projection_tolerance: f64,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options {
+            integration: Integration::Gauss(3),
+            rho: 100.0,
+            initial: InitialStatus::All,
+            projection_tolerance: 0.5,
+        }
+    }
+}
+
+#[derive(Clone, Debug)]
+struct Point {
+    /// Index into slave.cells.
+    cell: usize,
+    xi: f64,
+    /// Weight × initial Jacobian × (thickness or 2πr).
+    omega: f64,
+    active: bool,
+    excluded: bool,
+    /// Index into master.cells and parametric coordinate of the (clamped) projection.
+    master: usize,
+    xi_m: f64,
+}
+
+pub struct PointToSegment {
+    pub slave: Surface,
+    pub master: Surface,
+    pub opts: Options,
+    points: Vec<Point>,
+    /// slave node → multiplier index
+    pub mult_of: HashMap<usize, usize>,
+    /// multiplier index → slave node
+    pub mult_nodes: Vec<usize>,
+    master_cells_of_node: HashMap<usize, Vec<usize>>,
+    saved_status: Vec<bool>,
+}
+
+/// Geometry of one contact point at the current state.
+struct Eval {
+    ns: [f64; MAX_NODES],
+    nm: [f64; MAX_NODES],
+    normal: [f64; 2],
+    d: f64,
+}
+
+impl PointToSegment {
+    pub fn new(
+        mesh: &Mesh,
+        slave: Surface,
+        master: Surface,
+        opts: Options,
+        model: Modelisation,
+        thickness: f64,
+    ) -> Self {
+        let mut mult_nodes = slave.nodes.clone();
+        mult_nodes.sort_unstable();
+        let mult_of = mult_nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, k))
+            .collect();
+        let mut points = vec![];
+        for (ic, &c) in slave.cells.iter().enumerate() {
+            let kind = mesh.kind(c);
+            let x0: Vec<[f64; 2]> = mesh.cell_nodes(c).iter().map(|&n| mesh.coords[n]).collect();
+            let rule: Vec<(f64, f64)> = match opts.integration {
+                Integration::Gauss(n) => {
+                    let (p, w) = gauss_legendre(n);
+                    p.into_iter().zip(w).collect()
+                }
+                Integration::Nodal if kind.is_quadratic() => {
+                    vec![(-1.0, 1.0 / 3.0), (1.0, 1.0 / 3.0), (0.0, 4.0 / 3.0)]
+                }
+                Integration::Nodal => vec![(-1.0, 1.0), (1.0, 1.0)],
+            };
+            for (xi, w) in rule {
+                let (p, t) = point_and_tangent(kind, &x0, xi);
+                let measure = match model {
+                    Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * p[0],
+                    _ => thickness,
+                };
+                points.push(Point {
+                    cell: ic,
+                    xi,
+                    omega: w * t[0].hypot(t[1]) * measure,
+                    active: false,
+                    excluded: false,
+                    master: 0,
+                    xi_m: 0.0,
+                });
+            }
+        }
+        let mut master_cells_of_node: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (im, &c) in master.cells.iter().enumerate() {
+            for &n in mesh.cell_nodes(c) {
+                master_cells_of_node.entry(n).or_default().push(im);
+            }
+        }
+        let n_points = points.len();
+        PointToSegment {
+            slave,
+            master,
+            opts,
+            points,
+            mult_of,
+            mult_nodes,
+            master_cells_of_node,
+            saved_status: vec![false; n_points],
+        }
+    }
+
+    pub fn num_multipliers(&self) -> usize {
+        self.mult_nodes.len()
+    }
+
+    pub fn num_active(&self) -> usize {
+        self.points.iter().filter(|p| p.active).count()
+    }
+
+    /// Sets the initial statuses from the undeformed geometry.
+    pub fn initialise(&mut self, mesh: &Mesh) {
+        let u = vec![0.0; 2 * mesh.num_nodes()];
+        for i in 0..self.points.len() {
+            self.pair(mesh, &u, i);
+            let p = &self.points[i];
+            let active = !p.excluded
+                && match self.opts.initial {
+                    InitialStatus::All => true,
+                    InitialStatus::Closed => self.eval(mesh, &u, i).d >= 0.0,
+                };
+            self.points[i].active = active;
+        }
+        self.saved_status = self.points.iter().map(|p| p.active).collect();
+    }
+
+    fn current(mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        [
+            mesh.coords[n][0] + u[2 * n],
+            mesh.coords[n][1] + u[2 * n + 1],
+        ]
+    }
+
+    fn slave_point(&self, mesh: &Mesh, u: &[f64], i: usize, ns: &mut [f64; MAX_NODES]) -> [f64; 2] {
+        let p = &self.points[i];
+        let c = self.slave.cells[p.cell];
+        let kind = mesh.kind(c);
+        shape(kind, [p.xi, 0.0], ns);
+        let mut x = [0.0; 2];
+        for (a, &n) in mesh.cell_nodes(c).iter().enumerate() {
+            let xn = Self::current(mesh, u, n);
+            x[0] += ns[a] * xn[0];
+            x[1] += ns[a] * xn[1];
+        }
+        x
+    }
+
+    /// Pairs point i with the master surface at displacement u.
+    fn pair(&mut self, mesh: &Mesh, u: &[f64], i: usize) {
+        let mut ns = [0.0; MAX_NODES];
+        let xs = self.slave_point(mesh, u, i, &mut ns);
+        let nearest = self
+            .master
+            .nodes
+            .iter()
+            .copied()
+            .min_by(|&a, &b| {
+                let (pa, pb) = (Self::current(mesh, u, a), Self::current(mesh, u, b));
+                let da = (pa[0] - xs[0]).powi(2) + (pa[1] - xs[1]).powi(2);
+                let db = (pb[0] - xs[0]).powi(2) + (pb[1] - xs[1]).powi(2);
+                da.total_cmp(&db)
+            })
+            .unwrap();
+        let mut best: Option<(f64, usize, f64, f64)> = None; // (dist², master, ξ clamped, overshoot)
+        for &im in self
+            .master_cells_of_node
+            .get(&nearest)
+            .map(|v| v.as_slice())
+            .unwrap_or(&[])
+        {
+            let c = self.master.cells[im];
+            let kind = mesh.kind(c);
+            let x: Vec<[f64; 2]> = mesh
+                .cell_nodes(c)
+                .iter()
+                .map(|&n| Self::current(mesh, u, n))
+                .collect();
+            let pr = project(kind, &x, xs);
+            let xi = pr.xi.clamp(-1.0, 1.0);
+            let over = (pr.xi.abs() - 1.0).max(0.0);
+            let (q, _) = point_and_tangent(kind, &x, xi);
+            let d2 = (q[0] - xs[0]).powi(2) + (q[1] - xs[1]).powi(2);
+            if best.is_none_or(|b| d2 < b.0) {
+                best = Some((d2, im, xi, over));
+            }
+        }
+        let p = &mut self.points[i];
+        match best {
+            Some((_, im, xi, over)) => {
+                p.master = im;
+                p.xi_m = xi;
+                p.excluded = over > self.opts.projection_tolerance;
+            }
+            None => p.excluded = true,
+        }
+    }
+
+    fn eval(&self, mesh: &Mesh, u: &[f64], i: usize) -> Eval {
+        let mut ns = [0.0; MAX_NODES];
+        let xs = self.slave_point(mesh, u, i, &mut ns);
+        let p = &self.points[i];
+        let c = self.master.cells[p.master];
+        let kind = mesh.kind(c);
+        let x: Vec<[f64; 2]> = mesh
+            .cell_nodes(c)
+            .iter()
+            .map(|&n| Self::current(mesh, u, n))
+            .collect();
+        let (q, t) = point_and_tangent(kind, &x, p.xi_m);
+        let lt = t[0].hypot(t[1]);
+        let tau = [t[0] / lt, t[1] / lt];
+        // outward normal of the master body, then inward
+        let out = if self.master.ccw[p.master] {
+            [tau[1], -tau[0]]
+        } else {
+            [-tau[1], tau[0]]
+        };
+        let normal = [-out[0], -out[1]];
+        let d = (xs[0] - q[0]) * normal[0] + (xs[1] - q[1]) * normal[1];
+        let mut nm = [0.0; MAX_NODES];
+        shape(kind, [p.xi_m, 0.0], &mut nm);
+        Eval { ns, nm, normal, d }
+    }
+
+    fn point_lambda(&self, mesh: &Mesh, i: usize, ns: &[f64; MAX_NODES], lam: &[f64]) -> f64 {
+        let c = self.slave.cells[self.points[i].cell];
+        mesh.cell_nodes(c)
+            .iter()
+            .enumerate()
+            .map(|(a, n)| ns[a] * lam[self.mult_of[n]])
+            .sum()
+    }
+
+    /// Re-pairs every point at the displacement u.
+    pub fn pair_all(&mut self, mesh: &Mesh, u: &[f64]) {
+        for i in 0..self.points.len() {
+            self.pair(mesh, u, i);
+        }
+    }
+
+    /// Residual contributions (`ru` on full dofs, `rl` on multipliers, both added to) and
+    /// tangent triplets over extended ids (multiplier k is `ndof + mult_base + k`).
+    pub fn contribute(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        lam: &[f64],
+        ru: &mut [f64],
+        rl: &mut [f64],
+        k: &mut Triplets,
+        mult_base: usize,
+    ) {
+        let ndof = 2 * mesh.num_nodes();
+        let rho = self.opts.rho;
+        for i in 0..self.points.len() {
+            let p = &self.points[i];
+            let e = self.eval(mesh, u, i);
+            let lp = self.point_lambda(mesh, i, &e.ns, lam);
+            let chi = p.active && !p.excluded;
+            let sc = self.slave.cells[p.cell];
+            let mc = self.master.cells[p.master];
+            let snodes = mesh.cell_nodes(sc);
+            let mnodes = mesh.cell_nodes(mc);
+            // B over (dof id, value)
+            let mut b: Vec<(usize, f64)> = vec![];
+            for (a, &n) in snodes.iter().enumerate() {
+                b.push((2 * n, e.ns[a] * e.normal[0]));
+                b.push((2 * n + 1, e.ns[a] * e.normal[1]));
+            }
+            for (a, &n) in mnodes.iter().enumerate() {
+                b.push((2 * n, -e.nm[a] * e.normal[0]));
+                b.push((2 * n + 1, -e.nm[a] * e.normal[1]));
+            }
+            let mults: Vec<(usize, f64)> = snodes
+                .iter()
+                .enumerate()
+                .map(|(a, n)| (self.mult_of[n], e.ns[a]))
+                .collect();
+            let w = p.omega;
+            let c = if chi { 1.0 } else { 0.0 };
+            let lhat = lp - rho * e.d;
+            if chi {
+                for &(dof, bv) in &b {
+                    ru[dof] += -w * lhat * bv;
+                }
+                for &(m, nv) in &mults {
+                    rl[m] += -w * e.d * nv;
+                }
+            } else {
+                for &(m, nv) in &mults {
+                    rl[m] += -w * lp / rho * nv;
+                }
+            }
+            // Full structure every time (zeros when inactive) so the pattern stays put.
+            for &(r, br) in &b {
+                for &(cc, bc) in &b {
+                    k.add(r, cc, c * rho * w * br * bc);
+                }
+                for &(m, nv) in &mults {
+                    k.add(r, ndof + mult_base + m, -c * w * br * nv);
+                    k.add(ndof + mult_base + m, r, -c * w * br * nv);
+                }
+            }
+            for &(m1, n1) in &mults {
+                for &(m2, n2) in &mults {
+                    k.add(
+                        ndof + mult_base + m1,
+                        ndof + mult_base + m2,
+                        -(1.0 - c) * w / rho * n1 * n2,
+                    );
+                }
+            }
+        }
+    }
+
+    /// Re-pairs and updates the statuses from the iterate (u, λ); returns the number of changes.
+    pub fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
+        self.pair_all(mesh, u);
+        let mut changes = 0;
+        for i in 0..self.points.len() {
+            let e = self.eval(mesh, u, i);
+            let lp = self.point_lambda(mesh, i, &e.ns, lam);
+            let p = &self.points[i];
+            let active = !p.excluded && lp - self.opts.rho * e.d < 0.0;
+            if active != p.active {
+                changes += 1;
+                self.points[i].active = active;
+            }
+        }
+        changes
+    }
+
+    pub fn commit(&mut self) {
+        self.saved_status = self.points.iter().map(|p| p.active).collect();
+    }
+
+    pub fn restore(&mut self) {
+        for (p, &s) in self.points.iter_mut().zip(&self.saved_status) {
+            p.active = s;
+        }
+    }
+
+    /// Contact pressure at each slave node from the multipliers: (node, −λ).
+    pub fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
+        self.mult_nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, -lam[k]))
+            .collect()
+    }
+}

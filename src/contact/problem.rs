@@ -1,0 +1,131 @@
+//! `ContactProblem`: elastic bodies plus contact pairs. Unknowns are the free displacements
+//! followed by the multipliers of every pair; the matrix is the solid one plus the contact
+//! blocks (symmetric indefinite: solved with LU).
+
+use super::point_segment::PointToSegment;
+use crate::assembly::coupled::{CoupledMatrix, Triplets};
+use crate::assembly::matrix::SparseMatrix;
+use crate::error::Result;
+use crate::solver::newton::Nonlinear;
+use crate::solver::problem::{Norms, SolidProblem};
+
+pub struct ContactProblem<'m> {
+    pub solid: SolidProblem<'m>,
+    pub pairs: Vec<PointToSegment>,
+    /// First multiplier index of each pair.
+    pub mult_base: Vec<usize>,
+    /// All multipliers, current values.
+    pub lam: Vec<f64>,
+    coupled: CoupledMatrix,
+    triplets: Triplets,
+    ru: Vec<f64>,
+    saved_lam: Vec<f64>,
+}
+
+impl<'m> ContactProblem<'m> {
+    pub fn new(solid: SolidProblem<'m>, mut pairs: Vec<PointToSegment>) -> Self {
+        let mut mult_base = vec![];
+        let mut n = 0;
+        for p in &mut pairs {
+            p.initialise(solid.mesh);
+            mult_base.push(n);
+            n += p.num_multipliers();
+        }
+        let ndof = solid.u.len();
+        ContactProblem {
+            solid,
+            pairs,
+            mult_base,
+            lam: vec![0.0; n],
+            coupled: CoupledMatrix::default(),
+            triplets: Triplets::default(),
+            ru: vec![0.0; ndof],
+            saved_lam: vec![0.0; n],
+        }
+    }
+
+    pub fn pattern_rebuilds(&self) -> usize {
+        self.coupled.rebuilds
+    }
+}
+
+impl Nonlinear for ContactProblem<'_> {
+    fn num_unknowns(&self) -> usize {
+        self.solid.num_free() + self.lam.len()
+    }
+
+    fn unknowns(&self) -> Vec<f64> {
+        let mut x = self.solid.free_unknowns();
+        x.extend_from_slice(&self.lam);
+        x
+    }
+
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        with_tangent: bool,
+    ) -> Result<Norms> {
+        let nf = self.solid.num_free();
+        self.solid.set_state(&x[..nf], lambda, with_tangent)?;
+        self.lam.copy_from_slice(&x[nf..]);
+        self.ru.fill(0.0);
+        r[nf..].fill(0.0);
+        self.triplets.clear();
+        let mesh = self.solid.mesh;
+        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            p.contribute(
+                mesh,
+                &self.solid.u,
+                &self.lam[base..base + n],
+                &mut self.ru,
+                &mut r[nf + base..nf + base + n],
+                &mut self.triplets,
+                base,
+            );
+        }
+        let norms = self.solid.finish_residual(Some(&self.ru), &mut r[..nf]);
+        if with_tangent {
+            self.coupled.update(
+                &self.solid.asm.matrix,
+                &self.solid.asm.dofs,
+                self.lam.len(),
+                &self.triplets,
+            );
+        }
+        Ok(norms)
+    }
+
+    fn matrix(&self) -> &SparseMatrix {
+        &self.coupled.matrix
+    }
+
+    fn update_status(&mut self, x: &[f64], lambda: f64) -> Result<usize> {
+        let nf = self.solid.num_free();
+        let mut u = vec![0.0; self.solid.u.len()];
+        self.solid.asm.dofs.expand(&x[..nf], lambda, &mut u);
+        let lam = &x[nf..];
+        let mesh = self.solid.mesh;
+        let mut changes = 0;
+        for (p, &base) in self.pairs.iter_mut().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            changes += p.update_status(mesh, &u, &lam[base..base + n]);
+        }
+        Ok(changes)
+    }
+
+    fn commit_step(&mut self) {
+        for p in &mut self.pairs {
+            p.commit();
+        }
+        self.saved_lam.clone_from(&self.lam);
+    }
+
+    fn restore_step(&mut self) {
+        for p in &mut self.pairs {
+            p.restore();
+        }
+    }
+}
