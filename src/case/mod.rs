@@ -426,7 +426,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        let report = newton::solve(&mut cp, &settings, Method::Lu)?;
+        let report = newton::solve(&mut cp, &settings, Method::SaddleLdlt)?;
         let pressures = cp
             .pairs
             .iter()

@@ -54,6 +54,10 @@ impl Nonlinear for ContactProblem<'_> {
         self.solid.num_free() + self.lam.len()
     }
 
+    fn num_primal(&self) -> usize {
+        self.solid.num_free()
+    }
+
     fn unknowns(&self) -> Vec<f64> {
         let mut x = self.solid.free_unknowns();
         x.extend_from_slice(&self.lam);

@@ -1,7 +1,9 @@
 //! Sparse direct solves with faer: Cholesky (LLᵀ) for symmetric positive definite systems,
-//! LU otherwise. The symbolic factorisation is kept and reused while the pattern is
-//! unchanged (same matrix dimension and number of entries, checked).
+//! LDLᵀ with a constrained ordering for symmetric saddle-point systems (contact
+//! multipliers), LU otherwise. The symbolic factorisation is kept and reused while the
+//! pattern is unchanged (checked with a hash of the pattern).
 
+use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::Solve;
@@ -11,12 +13,17 @@ use faer::Side;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     Cholesky,
+    /// Symmetric saddle point: the first `n_primal` unknowns are displacements.
+    SaddleLdlt,
     Lu,
 }
 
 pub struct LinearSolver {
     pub method: Method,
-    pattern: Option<(usize, usize)>,
+    pattern: Option<u64>,
+    /// For `SaddleLdlt`: number of leading primal (displacement) unknowns.
+    pub n_primal: usize,
+    ldlt: Option<SaddleLdlt>,
     sym_llt: Option<SymbolicLlt<usize>>,
     sym_lu: Option<SymbolicLu<usize>>,
     llt: Option<Llt<usize, f64>>,
@@ -31,6 +38,8 @@ impl LinearSolver {
         LinearSolver {
             method,
             pattern: None,
+            n_primal: 0,
+            ldlt: None,
             sym_llt: None,
             sym_lu: None,
             llt: None,
@@ -41,10 +50,11 @@ impl LinearSolver {
 
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
-        let key = (a.n, a.nnz());
+        let key = pattern_hash(a);
         if self.pattern != Some(key) {
             self.sym_llt = None;
             self.sym_lu = None;
+            self.ldlt = None;
             self.pattern = Some(key);
         }
         let mat = a.as_faer();
@@ -67,6 +77,22 @@ impl LinearSolver {
                     ))
                 })?);
             }
+            Method::SaddleLdlt => {
+                let symbolic = match self.ldlt.take() {
+                    Some(f) => f.into_symbolic(),
+                    None => {
+                        self.symbolic_count += 1;
+                        SaddleLdlt::symbolic(a, self.n_primal)?
+                    }
+                };
+                match SaddleLdlt::numeric(symbolic, a) {
+                    Ok(f) => self.ldlt = Some(f),
+                    Err(e) => {
+                        self.pattern = None;
+                        return Err(e);
+                    }
+                }
+            }
             Method::Lu => {
                 if self.sym_lu.is_none() {
                     self.sym_lu = Some(
@@ -88,18 +114,18 @@ impl LinearSolver {
     /// Solves in place with the last factorisation; fails on a non-finite result.
     pub fn solve(&self, b: &mut [f64]) -> Result<()> {
         let n = b.len();
-        let rhs = faer::MatMut::from_column_major_slice_mut(b, n, 1);
         match self.method {
             Method::Cholesky => self
                 .llt
                 .as_ref()
                 .expect("factor before solve")
-                .solve_in_place(rhs),
+                .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
             Method::Lu => self
                 .lu
                 .as_ref()
                 .expect("factor before solve")
-                .solve_in_place(rhs),
+                .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
+            Method::SaddleLdlt => self.ldlt.as_ref().expect("factor before solve").solve(b),
         }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(Error::solve(
@@ -108,6 +134,19 @@ impl LinearSolver {
         }
         Ok(())
     }
+}
+
+/// Hash of a sparsity pattern (FNV-1a over dimensions, column pointers and row indices).
+fn pattern_hash(a: &SparseMatrix) -> u64 {
+    let mut h: u64 = 0xcbf29ce484222325;
+    let mut mix = |v: usize| {
+        h ^= v as u64;
+        h = h.wrapping_mul(0x100000001b3);
+    };
+    mix(a.n);
+    a.col_ptr.iter().for_each(|&v| mix(v));
+    a.row_idx.iter().for_each(|&v| mix(v));
+    h
 }
 
 #[cfg(test)]

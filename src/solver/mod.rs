@@ -2,10 +2,12 @@
 //!
 //! | file | what |
 //! |---|---|
+//! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
 //! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
 
+pub mod ldlt;
 pub mod linear;
 pub mod newton;
 pub mod problem;

@@ -12,6 +12,10 @@ use serde::Serialize;
 /// updated after each correction and a step converges only when none changed.
 pub trait Nonlinear {
     fn num_unknowns(&self) -> usize;
+    /// Leading unknowns that are displacements (the rest are multipliers).
+    fn num_primal(&self) -> usize {
+        self.num_unknowns()
+    }
     /// The unknowns of the current state (the start of the solve).
     fn unknowns(&self) -> Vec<f64>;
     /// Sets the state to (x, λ), writes the residual, assembles the tangent if asked.
@@ -76,6 +80,10 @@ pub struct NewtonReport {
     pub total_iterations: usize,
     pub factorizations: usize,
     pub symbolic_factorizations: usize,
+    /// Wall time spent evaluating residuals and tangents, factorising, solving (s).
+    pub time_evaluate_s: f64,
+    pub time_factor_s: f64,
+    pub time_solve_s: f64,
 }
 
 /// Solves the problem from its current state to λ = 1.
@@ -88,6 +96,7 @@ pub fn solve(
     let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
     let mut lin = LinearSolver::new(method);
+    lin.n_primal = problem.num_primal();
     let mut report = NewtonReport::default();
     let mut lambda_done = 0.0;
     let base = 1.0 / settings.steps.max(1) as f64;
@@ -104,7 +113,9 @@ pub fn solve(
         let mut failure = None;
         let mut changes = usize::MAX;
         for it in 0..=settings.max_iterations {
+            let t = std::time::Instant::now();
             let norms = problem.evaluate(&x, lambda, &mut r, true)?;
+            report.time_evaluate_s += t.elapsed().as_secs_f64();
             let rel = norms.relative();
             step.iterations.push(Iteration {
                 iteration: it,
@@ -129,15 +140,19 @@ pub fn solve(
                 ));
                 break;
             }
+            let t = std::time::Instant::now();
             if let Err(e) = lin.factor(problem.matrix()) {
                 failure = Some(e.to_string());
                 break;
             }
+            report.time_factor_s += t.elapsed().as_secs_f64();
             report.factorizations += 1;
             for v in r.iter_mut() {
                 *v = -*v;
             }
+            let t = std::time::Instant::now();
             lin.solve(&mut r)?;
+            report.time_solve_s += t.elapsed().as_secs_f64();
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
             }
