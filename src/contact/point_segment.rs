@@ -82,6 +82,10 @@ pub struct PointToSegment {
     pub mult_nodes: Vec<usize>,
     master_cells_of_node: HashMap<usize, Vec<usize>>,
     saved_status: Vec<bool>,
+    /// Per slave cell, the master cells it may couple with: those near it initially, plus
+    /// any it has been paired with since. The matrix pattern covers all of them, so it only
+    /// changes when a point pairs outside this set.
+    candidates: Vec<Vec<usize>>,
 }
 
 /// Geometry of one contact point at the current state.
@@ -146,6 +150,7 @@ impl PointToSegment {
             }
         }
         let n_points = points.len();
+        let candidates = initial_candidates(mesh, &slave, &master);
         PointToSegment {
             slave,
             master,
@@ -155,6 +160,7 @@ impl PointToSegment {
             mult_nodes,
             master_cells_of_node,
             saved_status: vec![false; n_points],
+            candidates,
         }
     }
 
@@ -243,6 +249,11 @@ impl PointToSegment {
             }
         }
         let p = &mut self.points[i];
+        if let Some((_, im, _, _)) = best {
+            if !self.candidates[p.cell].contains(&im) {
+                self.candidates[p.cell].push(im);
+            }
+        }
         match best {
             Some((_, im, xi, over)) => {
                 p.master = im;
@@ -335,7 +346,6 @@ impl PointToSegment {
                 .map(|(a, n)| (self.mult_of[n], e.ns[a]))
                 .collect();
             let w = p.omega;
-            let c = if chi { 1.0 } else { 0.0 };
             let lhat = lp - rho * e.d;
             if chi {
                 for &(dof, bv) in &b {
@@ -349,23 +359,60 @@ impl PointToSegment {
                     rl[m] += -w * lp / rho * nv;
                 }
             }
-            // Full structure every time (zeros when inactive) so the pattern stays put.
-            for &(r, br) in &b {
-                for &(cc, bc) in &b {
-                    k.add(r, cc, c * rho * w * br * bc);
+            if chi {
+                for &(r, br) in &b {
+                    for &(cc, bc) in &b {
+                        k.add(r, cc, rho * w * br * bc);
+                    }
+                    for &(m, nv) in &mults {
+                        k.add(r, ndof + mult_base + m, -w * br * nv);
+                        k.add(ndof + mult_base + m, r, -w * br * nv);
+                    }
                 }
-                for &(m, nv) in &mults {
-                    k.add(r, ndof + mult_base + m, -c * w * br * nv);
-                    k.add(ndof + mult_base + m, r, -c * w * br * nv);
+            } else {
+                for &(m1, n1) in &mults {
+                    for &(m2, n2) in &mults {
+                        k.add(
+                            ndof + mult_base + m1,
+                            ndof + mult_base + m2,
+                            -w / rho * n1 * n2,
+                        );
+                    }
                 }
             }
-            for &(m1, n1) in &mults {
-                for &(m2, n2) in &mults {
-                    k.add(
-                        ndof + mult_base + m1,
-                        ndof + mult_base + m2,
-                        -(1.0 - c) * w / rho * n1 * n2,
-                    );
+        }
+        // The pattern: explicit zeros over every coupling a slave cell may have, so that
+        // status and pairing changes within the candidates keep the pattern (and the
+        // symbolic factorisation) unchanged.
+        for (ic, &sc) in self.slave.cells.iter().enumerate() {
+            let mut dofs: Vec<usize> = vec![];
+            for &n in mesh.cell_nodes(sc) {
+                dofs.extend([2 * n, 2 * n + 1]);
+            }
+            for &im in &self.candidates[ic] {
+                for &n in mesh.cell_nodes(self.master.cells[im]) {
+                    dofs.extend([2 * n, 2 * n + 1]);
+                }
+            }
+            dofs.sort_unstable();
+            dofs.dedup();
+            let mults: Vec<usize> = mesh
+                .cell_nodes(sc)
+                .iter()
+                .map(|n| ndof + mult_base + self.mult_of[n])
+                .collect();
+            for &r in &dofs {
+                for &cc in &dofs {
+                    k.add(r, cc, 0.0);
+                }
+                for &m in &mults {
+                    k.add(r, m, 0.0);
+                    k.add(m, r, 0.0);
+                }
+            }
+            for &m1 in &mults {
+                for &m2 in &mults {
+                    k.add(m1, m2, 0.0);
                 }
             }
         }
@@ -406,4 +453,38 @@ impl PointToSegment {
             .map(|(k, &n)| (n, -lam[k]))
             .collect()
     }
+}
+
+/// Master cells within reach of each slave cell on the initial geometry: those whose
+/// bounding box, grown by the larger of the two cells' sizes, meets the slave cell's.
+fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec<usize>> {
+    let bbox = |c: usize| {
+        let mut lo = [f64::MAX; 2];
+        let mut hi = [f64::MIN; 2];
+        for &n in mesh.cell_nodes(c) {
+            for d in 0..2 {
+                lo[d] = lo[d].min(mesh.coords[n][d]);
+                hi[d] = hi[d].max(mesh.coords[n][d]);
+            }
+        }
+        (lo, hi)
+    };
+    let mboxes: Vec<_> = master.cells.iter().map(|&c| bbox(c)).collect();
+    slave
+        .cells
+        .iter()
+        .map(|&sc| {
+            let (slo, shi) = bbox(sc);
+            let ssize = (shi[0] - slo[0]).hypot(shi[1] - slo[1]);
+            mboxes
+                .iter()
+                .enumerate()
+                .filter(|(_, (lo, hi))| {
+                    let r = ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]));
+                    (0..2).all(|d| lo[d] - r <= shi[d] && slo[d] <= hi[d] + r)
+                })
+                .map(|(i, _)| i)
+                .collect()
+        })
+        .collect()
 }

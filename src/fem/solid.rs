@@ -182,31 +182,43 @@ pub fn residual_tangent(
             }
         }
         let Some(k) = ke.as_deref_mut() else { continue };
+        // Material part Bᵀ D B, upper triangle only (mirrored after the loop): B as 4 × nd
+        // rows, D·B precomputed per column.
+        let mut bm = [[0.0; MAX_DOFS]; 4];
         for a in 0..nn {
-            for i in 0..2 {
-                // D·B column of (a, i)
-                let mut db = [0.0; 4];
-                for v in 0..4 {
-                    for w in 0..4 {
-                        db[v] += d[v][w] * b[a][w][i];
-                    }
-                }
-                let row = 2 * a + i;
-                for bn in 0..nn {
-                    for j in 0..2 {
-                        let mut acc = 0.0;
-                        for v in 0..4 {
-                            acc += b[bn][v][j] * db[v];
-                        }
-                        k[row * nd + 2 * bn + j] += acc * g.dv;
+            for v in 0..4 {
+                bm[v][2 * a] = b[a][v][0];
+                bm[v][2 * a + 1] = b[a][v][1];
+            }
+        }
+        let mut dbm = [[0.0; MAX_DOFS]; 4];
+        for v in 0..4 {
+            for w in 0..4 {
+                if d[v][w] != 0.0 {
+                    for c in 0..nd {
+                        dbm[v][c] += d[v][w] * bm[w][c];
                     }
                 }
             }
         }
+        for r in 0..nd {
+            let br = [
+                bm[0][r] * g.dv,
+                bm[1][r] * g.dv,
+                bm[2][r] * g.dv,
+                bm[3][r] * g.dv,
+            ];
+            let row = &mut k[r * nd..(r + 1) * nd];
+            for c in r..nd {
+                row[c] +=
+                    br[0] * dbm[0][c] + br[1] * dbm[1][c] + br[2] * dbm[2][c] + br[3] * dbm[3][c];
+            }
+        }
         if large {
-            // Geometric stiffness: ∇N_a · S · ∇N_b on both in-plane dofs (+ hoop term).
+            // Geometric stiffness: ∇N_a · S · ∇N_b on both in-plane dofs (+ hoop term),
+            // upper triangle (b ≥ a) only.
             for a in 0..nn {
-                for bn in 0..nn {
+                for bn in a..nn {
                     let (ax, ay) = (g.dn[a][0], g.dn[a][1]);
                     let (bx, by) = (g.dn[bn][0], g.dn[bn][1]);
                     let kab = (ax * bx * s[0] + ay * by * s[1] + (ax * by + ay * bx) * s[3]) * g.dv;
@@ -216,6 +228,14 @@ pub fn residual_tangent(
                         k[(2 * a) * nd + 2 * bn] += s[2] * g.n[a] * g.n[bn] / (g.r * g.r) * g.dv;
                     }
                 }
+            }
+        }
+    }
+    if let Some(k) = ke {
+        // Only the upper triangle was accumulated: mirror it.
+        for r in 0..nd {
+            for c in 0..r {
+                k[r * nd + c] = k[c * nd + r];
             }
         }
     }

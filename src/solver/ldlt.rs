@@ -13,6 +13,7 @@ use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
     SymmetricOrdering,
 };
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Conj, MatMut, Par, Side};
 
@@ -92,7 +93,11 @@ impl SaddleLdlt {
             a.as_faer().symbolic(),
             Side::Lower,
             SymmetricOrdering::Custom(perm),
-            CholeskySymbolicParams::default(),
+            // The simplicial kernel is several times slower at these sizes.
+            CholeskySymbolicParams {
+                supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
+                ..Default::default()
+            },
         )
         .map_err(|e| Error::solve(format!("symbolic LDLT failed: {e:?}")))
     }
