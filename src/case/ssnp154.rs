@@ -98,6 +98,29 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
     }
 }
 
+/// Modelisations that can run now (id, quadratic, formulation of the reference).
+pub const AVAILABLE: [&str; 2] = ["A", "B"];
+
+/// The reference set-up of a modelisation: large kinematics, contact between the
+/// cylinder's arc (slave) and the block's top (master), 2 load steps, Newton tolerance
+/// 1e-6. A and B: point-to-segment, 3 Gauss points, ρ = 100, all points initially active.
+pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> CaseFile {
+    let mut c = glued_case(mesh, Kinematics::Large);
+    c.title = format!("SSNP154 {id}: cylinder on block, Hertz contact");
+    c.relation.clear();
+    c.solver.max_iterations = 50;
+    c.contact.push(ContactSpec {
+        slave: "Bottom_C".into(),
+        master: "Top_B".into(),
+        formulation: formulation.unwrap_or("point-to-segment").into(),
+        integration: "gauss".into(),
+        gauss_points: 3,
+        rho: 100.0,
+        initial: "all".into(),
+    });
+    c
+}
+
 /// Mesh spec of the built-in SSNP154 mesh.
 pub fn builtin_mesh(quadratic: bool, size: f64) -> MeshSpec {
     MeshSpec {

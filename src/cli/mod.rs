@@ -50,6 +50,9 @@ enum Command {
         /// Write the table as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
+        /// Run the modelisations with this contact formulation instead of the reference's.
+        #[arg(long)]
+        formulation: Option<String>,
         #[arg(short, long)]
         verbose: bool,
     },
@@ -80,7 +83,13 @@ pub fn main() -> Result<i32> {
         Command::Validate {
             meshes,
             json,
+            formulation,
             verbose,
-        } => validate::validate(meshes.as_deref(), json.as_deref(), verbose),
+        } => validate::validate(
+            meshes.as_deref(),
+            json.as_deref(),
+            formulation.as_deref(),
+            verbose,
+        ),
     }
 }
