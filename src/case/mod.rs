@@ -426,7 +426,12 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        let report = newton::solve(&mut cp, &settings, Method::SaddleLdlt)?;
+        let method = if std::env::var("TRIBO_LU").is_ok() {
+            Method::Lu
+        } else {
+            Method::SaddleLdlt
+        };
+        let report = newton::solve(&mut cp, &settings, method)?;
         let pressures = cp
             .pairs
             .iter()

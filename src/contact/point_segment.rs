@@ -14,7 +14,7 @@
 use super::projection::{point_and_tangent, project};
 use super::surface::Surface;
 use crate::assembly::coupled::Triplets;
-use crate::fem::element::{shape, MAX_NODES};
+use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::fem::material::Modelisation;
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Mesh;
@@ -92,8 +92,16 @@ pub struct PointToSegment {
 struct Eval {
     ns: [f64; MAX_NODES],
     nm: [f64; MAX_NODES],
+    /// dN_m/dξ at the projection
+    dnm: [f64; MAX_NODES],
     normal: [f64; 2],
+    tau: [f64; 2],
+    /// dx̄/dξ and d²x̄/dξ² of the master curve at the projection
+    t: [f64; 2],
+    tt: [f64; 2],
     d: f64,
+    /// the projection fell outside the master cell and was clamped to its end
+    clamped: bool,
 }
 
 impl PointToSegment {
@@ -264,18 +272,24 @@ impl PointToSegment {
         }
     }
 
+    /// Geometry of point i at displacement u: projected again on its paired master cell
+    /// (the cell only changes in `update_status`), so that the residual is a smooth
+    /// function of u between status updates and the tangent below is its exact derivative.
     fn eval(&self, mesh: &Mesh, u: &[f64], i: usize) -> Eval {
         let mut ns = [0.0; MAX_NODES];
         let xs = self.slave_point(mesh, u, i, &mut ns);
         let p = &self.points[i];
         let c = self.master.cells[p.master];
         let kind = mesh.kind(c);
-        let x: Vec<[f64; 2]> = mesh
-            .cell_nodes(c)
-            .iter()
-            .map(|&n| Self::current(mesh, u, n))
-            .collect();
-        let (q, t) = point_and_tangent(kind, &x, p.xi_m);
+        let nm_nodes = kind.num_nodes();
+        let mut x = [[0.0; 2]; 3];
+        for (a, &n) in mesh.cell_nodes(c).iter().enumerate() {
+            x[a] = Self::current(mesh, u, n);
+        }
+        let raw = project(kind, &x[..nm_nodes], xs).xi;
+        let clamped = raw.abs() > 1.0;
+        let xi_m = raw.clamp(-1.0, 1.0);
+        let (q, t) = point_and_tangent(kind, &x[..nm_nodes], xi_m);
         let lt = t[0].hypot(t[1]);
         let tau = [t[0] / lt, t[1] / lt];
         // outward normal of the master body, then inward
@@ -287,8 +301,29 @@ impl PointToSegment {
         let normal = [-out[0], -out[1]];
         let d = (xs[0] - q[0]) * normal[0] + (xs[1] - q[1]) * normal[1];
         let mut nm = [0.0; MAX_NODES];
-        shape(kind, [p.xi_m, 0.0], &mut nm);
-        Eval { ns, nm, normal, d }
+        let mut dnm = [[0.0; 2]; MAX_NODES];
+        shape(kind, [xi_m, 0.0], &mut nm);
+        shape_grad(kind, [xi_m, 0.0], &mut dnm);
+        // second derivative of the master curve (constant on a Seg3, zero on a Seg2)
+        let tt = if nm_nodes == 3 {
+            [
+                x[0][0] + x[1][0] - 2.0 * x[2][0],
+                x[0][1] + x[1][1] - 2.0 * x[2][1],
+            ]
+        } else {
+            [0.0, 0.0]
+        };
+        Eval {
+            ns,
+            nm,
+            dnm: std::array::from_fn(|a| dnm[a][0]),
+            normal,
+            tau,
+            t,
+            tt,
+            d,
+            clamped,
+        }
     }
 
     fn point_lambda(&self, mesh: &Mesh, i: usize, ns: &[f64; MAX_NODES], lam: &[f64]) -> f64 {
@@ -357,6 +392,53 @@ impl PointToSegment {
             } else {
                 for &(m, nv) in &mults {
                     rl[m] += -w * lp / rho * nv;
+                }
+            }
+            if chi && !e.clamped {
+                // −ω λ̂ ∂B/∂u: B moves with the master normal n and the projection ξ̄.
+                //   δξ̄ = [(δx_s − Σ N_m δu_m)·t + d n·Σ N_m' δu_m] / (|t|² − d n·t'')
+                //   δn  = −τ (n·δt)/|t|,  δt = Σ N_m' δu_m + t'' δξ̄
+                let tn2 = e.t[0] * e.t[0] + e.t[1] * e.t[1];
+                let den = tn2 - e.d * (e.normal[0] * e.tt[0] + e.normal[1] * e.tt[1]);
+                let lt = tn2.sqrt();
+                let mut cxi: Vec<(usize, f64)> = vec![];
+                for (a, &n) in snodes.iter().enumerate() {
+                    cxi.push((2 * n, e.ns[a] * e.t[0] / den));
+                    cxi.push((2 * n + 1, e.ns[a] * e.t[1] / den));
+                }
+                for (a, &n) in mnodes.iter().enumerate() {
+                    for comp in 0..2 {
+                        cxi.push((
+                            2 * n + comp,
+                            (-e.nm[a] * e.t[comp] + e.d * e.dnm[a] * e.normal[comp]) / den,
+                        ));
+                    }
+                }
+                let ntt = e.normal[0] * e.tt[0] + e.normal[1] * e.tt[1];
+                let mut cn: Vec<(usize, f64)> =
+                    cxi.iter().map(|&(dof, v)| (dof, ntt * v / lt)).collect();
+                for (a, &n) in mnodes.iter().enumerate() {
+                    for comp in 0..2 {
+                        cn.push((2 * n + comp, e.dnm[a] * e.normal[comp] / lt));
+                    }
+                }
+                let f = -w * lhat;
+                for (a, &n) in snodes.iter().enumerate() {
+                    for comp in 0..2 {
+                        for &(col, v) in &cn {
+                            k.add(2 * n + comp, col, f * e.ns[a] * (-e.tau[comp]) * v);
+                        }
+                    }
+                }
+                for (a, &n) in mnodes.iter().enumerate() {
+                    for comp in 0..2 {
+                        for &(col, v) in &cxi {
+                            k.add(2 * n + comp, col, f * (-e.dnm[a] * e.normal[comp]) * v);
+                        }
+                        for &(col, v) in &cn {
+                            k.add(2 * n + comp, col, f * (-e.nm[a]) * (-e.tau[comp]) * v);
+                        }
+                    }
                 }
             }
             if chi {

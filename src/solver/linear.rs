@@ -30,6 +30,13 @@ pub struct LinearSolver {
     lu: Option<Lu<usize, f64>>,
     /// Number of symbolic factorisations done (for reports and tests of reuse).
     pub symbolic_count: usize,
+    /// SaddleLdlt: the matrix itself (for refinement) and its symmetric part (factorised),
+    /// with the position of each entry's transpose.
+    exact: SparseMatrix,
+    sym: SparseMatrix,
+    transpose: Vec<usize>,
+    /// Refinement steps done in the last solve.
+    pub refinement_steps: usize,
 }
 
 impl LinearSolver {
@@ -45,6 +52,10 @@ impl LinearSolver {
             llt: None,
             lu: None,
             symbolic_count: 0,
+            exact: SparseMatrix::default(),
+            sym: SparseMatrix::default(),
+            transpose: vec![],
+            refinement_steps: 0,
         }
     }
 
@@ -78,14 +89,32 @@ impl LinearSolver {
                 })?);
             }
             Method::SaddleLdlt => {
+                // Factorise the symmetric part; `solve` refines with the exact matrix, so a
+                // slightly non-symmetric tangent (contact geometry terms) is solved exactly.
+                if self.ldlt.is_none() {
+                    self.transpose = (0..a.n)
+                        .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (p, c)))
+                        .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap_or(usize::MAX))
+                        .collect();
+                    if self.transpose.contains(&usize::MAX) {
+                        return Err(Error::solve(
+                            "saddle-point LDLT needs a structurally symmetric matrix",
+                        ));
+                    }
+                    self.sym = a.clone();
+                }
+                self.exact.clone_from(a);
+                for p in 0..a.nnz() {
+                    self.sym.values[p] = 0.5 * (a.values[p] + a.values[self.transpose[p]]);
+                }
                 let symbolic = match self.ldlt.take() {
                     Some(f) => f.into_symbolic(),
                     None => {
                         self.symbolic_count += 1;
-                        SaddleLdlt::symbolic(a, self.n_primal)?
+                        SaddleLdlt::symbolic(&self.sym, self.n_primal)?
                     }
                 };
-                match SaddleLdlt::numeric(symbolic, a) {
+                match SaddleLdlt::numeric(symbolic, &self.sym) {
                     Ok(f) => self.ldlt = Some(f),
                     Err(e) => {
                         self.pattern = None;
@@ -112,7 +141,7 @@ impl LinearSolver {
     }
 
     /// Solves in place with the last factorisation; fails on a non-finite result.
-    pub fn solve(&self, b: &mut [f64]) -> Result<()> {
+    pub fn solve(&mut self, b: &mut [f64]) -> Result<()> {
         let n = b.len();
         match self.method {
             Method::Cholesky => self
@@ -125,7 +154,7 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt => self.ldlt.as_ref().expect("factor before solve").solve(b),
+            Method::SaddleLdlt => self.solve_refined(b)?,
         }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(Error::solve(
@@ -133,6 +162,46 @@ impl LinearSolver {
             ));
         }
         Ok(())
+    }
+}
+
+impl LinearSolver {
+    /// x = M⁻¹ b refined with the exact matrix A: x += M⁻¹ (b − A x) until the residual is
+    /// at round-off level.
+    fn solve_refined(&mut self, b: &mut [f64]) -> Result<()> {
+        let f = self.ldlt.as_ref().expect("factor before solve");
+        let rhs = b.to_vec();
+        let scale = rhs
+            .iter()
+            .fold(0.0f64, |m, v| m.max(v.abs()))
+            .max(f64::MIN_POSITIVE);
+        f.solve(b);
+        let mut r = vec![0.0; b.len()];
+        self.refinement_steps = 0;
+        let mut last = f64::INFINITY;
+        loop {
+            self.exact.mul_vec(b, &mut r);
+            for (ri, bi) in r.iter_mut().zip(&rhs) {
+                *ri = bi - *ri;
+            }
+            let res = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if res <= 1e-12 * scale || (self.refinement_steps > 3 && res > 0.5 * last) {
+                if res > 1e-8 * scale {
+                    return Err(Error::solve(format!(
+                        "the linear solve did not converge (relative residual {:.1e}); the tangent is too \
+                         far from symmetric for the LDLT solver",
+                        res / scale
+                    )));
+                }
+                return Ok(());
+            }
+            last = res;
+            f.solve(&mut r);
+            for (bi, di) in b.iter_mut().zip(&r) {
+                *bi += di;
+            }
+            self.refinement_steps += 1;
+        }
     }
 }
 
