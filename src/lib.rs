@@ -13,6 +13,9 @@
 //! | `cli` | the `tribo` command |
 //! | `fem` | shape functions, quadrature, materials, element kernels |
 
+// Index loops mirror the formulas (sums over nodes, components, Gauss points).
+#![allow(clippy::needless_range_loop)]
+
 pub mod assembly;
 pub mod case;
 pub mod cli;

@@ -33,8 +33,8 @@ fn check_patch(kind: CellKind, m: Modelisation) {
     let scale = 1e-2;
     for n in 0..mesh.num_nodes() {
         let e = exact(mesh.coords[n]);
-        for c in 0..2 {
-            let err = (p.u[2 * n + c] - e[c]).abs();
+        for (c, ec) in e.iter().enumerate() {
+            let err = (p.u[2 * n + c] - ec).abs();
             assert!(
                 err < 1e-10 * scale,
                 "{kind} {m:?}: node {n} comp {c} error {err}"

@@ -116,7 +116,7 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
             "[model] large kinematics is not available in plane stress; use plane_strain or axisymmetric",
         ));
     }
-    if !(m.thickness > 0.0) {
+    if m.thickness.is_nan() || m.thickness <= 0.0 {
         return Err(Error::model(format!(
             "[model] thickness must be positive, got {}",
             m.thickness
@@ -367,7 +367,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<PointToSegment>> 
                 )))
             }
         };
-        if !(c.rho > 0.0) {
+        if c.rho.is_nan() || c.rho <= 0.0 {
             return Err(Error::model(format!(
                 "{what}: rho must be positive, got {}",
                 c.rho

@@ -344,6 +344,7 @@ impl PointToSegment {
 
     /// Residual contributions (`ru` on full dofs, `rl` on multipliers, both added to) and
     /// tangent triplets over extended ids (multiplier k is `ndof + mult_base + k`).
+    #[allow(clippy::too_many_arguments)] // state in, three accumulators out
     pub fn contribute(
         &self,
         mesh: &Mesh,

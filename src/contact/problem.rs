@@ -54,6 +54,10 @@ impl Nonlinear for ContactProblem<'_> {
         self.solid.num_free() + self.lam.len()
     }
 
+    fn length_scale(&self) -> f64 {
+        self.solid.length_scale()
+    }
+
     fn num_primal(&self) -> usize {
         self.solid.num_free()
     }

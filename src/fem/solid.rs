@@ -11,6 +11,10 @@ use crate::mesh::CellKind;
 
 pub const MAX_DOFS: usize = 2 * MAX_NODES;
 
+/// A cell whose Jacobian is not positive at a quadrature point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct BadJacobian;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Kinematics {
@@ -145,7 +149,7 @@ pub fn strain_at(
 
 /// Internal forces `fe` (2·nn) and, if asked, the tangent `ke` (2·nn × 2·nn, row-major)
 /// of one cell. `x` are the reference coordinates, `u` the nodal displacements.
-/// Returns Err(()) if the reference Jacobian is not positive at a quadrature point.
+/// Fails if the reference Jacobian is not positive at a quadrature point.
 pub fn residual_tangent(
     kind: CellKind,
     x: &[[f64; 2]],
@@ -153,7 +157,7 @@ pub fn residual_tangent(
     sm: &SolidModel,
     fe: &mut [f64],
     mut ke: Option<&mut [f64]>,
-) -> Result<(), ()> {
+) -> Result<(), BadJacobian> {
     let nn = kind.num_nodes();
     let nd = 2 * nn;
     fe[..nd].fill(0.0);
@@ -165,7 +169,7 @@ pub fn residual_tangent(
     let large = sm.kinematics == Kinematics::Large;
     let rule = stiffness_rule(kind);
     for (q, &xi) in rule.points.iter().enumerate() {
-        let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(())?;
+        let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(BadJacobian)?;
         let (f, fzz, e) = strain_at(&g, nn, u, sm);
         let s = apply(&d, &e);
         let mut b = [[[0.0; 2]; 4]; MAX_NODES];
@@ -251,12 +255,12 @@ pub fn gauss_stresses(
     u: &[[f64; 2]],
     sm: &SolidModel,
     out: &mut [[f64; 4]],
-) -> Result<(), ()> {
+) -> Result<(), BadJacobian> {
     let nn = kind.num_nodes();
     let d = sm.material.matrix(sm.model);
     let rule = stiffness_rule(kind);
     for (q, &xi) in rule.points.iter().enumerate() {
-        let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(())?;
+        let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(BadJacobian)?;
         let (f, fzz, e) = strain_at(&g, nn, u, sm);
         let s = apply(&d, &e);
         out[q] = match sm.kinematics {

@@ -64,6 +64,29 @@ impl MeshBuilder {
             .push(node);
     }
 
+    /// Appends a whole mesh (another body), renaming its groups with `rename`.
+    pub fn append(&mut self, mesh: &Mesh, rename: impl Fn(&str) -> String) {
+        let base = self.num_nodes();
+        for &x in &mesh.coords {
+            self.add_node(x);
+        }
+        let first = self.mesh.num_cells();
+        for c in 0..mesh.num_cells() {
+            let nodes: Vec<usize> = mesh.cell_nodes(c).iter().map(|n| n + base).collect();
+            self.add_cell(mesh.kind(c), &nodes, (first + c + 1) as u64);
+        }
+        for (name, cells) in &mesh.cell_groups {
+            for &c in cells {
+                self.add_to_cell_group(&rename(name), first + c);
+            }
+        }
+        for (name, nodes) in &mesh.node_groups {
+            for &n in nodes {
+                self.add_to_node_group(&rename(name), base + n);
+            }
+        }
+    }
+
     /// Checks and orients the mesh. Clockwise 2D cells are reordered counter-clockwise
     /// (counted in `Mesh::reoriented`); cells with a zero or sign-changing Jacobian are errors.
     pub fn finish(mut self) -> Result<Mesh> {

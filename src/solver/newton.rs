@@ -12,6 +12,10 @@ use serde::Serialize;
 /// updated after each correction and a step converges only when none changed.
 pub trait Nonlinear {
     fn num_unknowns(&self) -> usize;
+    /// A length of the model (its size), to recognise absurd displacement increments.
+    fn length_scale(&self) -> f64 {
+        f64::INFINITY
+    }
     /// Leading unknowns that are displacements (the rest are multipliers).
     fn num_primal(&self) -> usize {
         self.num_unknowns()
@@ -153,6 +157,18 @@ pub fn solve(
             let t = std::time::Instant::now();
             lin.solve(&mut r)?;
             report.time_solve_s += t.elapsed().as_secs_f64();
+            // A (numerically) singular matrix may factorise with tiny pivots: an increment
+            // a million times the model size means a body is free to move.
+            let step_size = r[..lin.n_primal.min(n)]
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            if step_size > 1e6 * problem.length_scale() {
+                failure = Some(format!(
+                    "the stiffness matrix is singular (displacement increment {step_size:.1e}): the model has a \
+                     rigid-body mode (a body not held by imposed displacements or contact)"
+                ));
+                break;
+            }
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
             }

@@ -103,6 +103,12 @@ impl<'m> SolidProblem<'m> {
         r
     }
 
+    /// Diagonal of the bounding box of the mesh.
+    pub fn length_scale(&self) -> f64 {
+        let (lo, hi) = crate::mesh::quality::bounding_box(self.mesh);
+        (hi[0] - lo[0]).hypot(hi[1] - lo[1])
+    }
+
     /// Free unknowns of the current displacement.
     pub fn free_unknowns(&self) -> Vec<f64> {
         let mut x = vec![0.0; self.asm.dofs.num_free];
@@ -130,5 +136,8 @@ impl Nonlinear for SolidProblem<'_> {
     }
     fn matrix(&self) -> &SparseMatrix {
         &self.asm.matrix
+    }
+    fn length_scale(&self) -> f64 {
+        self.length_scale()
     }
 }
