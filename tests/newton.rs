@@ -56,8 +56,8 @@ fy = -0.5
     // Asymptotic rate: the last pair of iterations with the second residual still well
     // above round-off (1e-10) must show log r_{k+1} / log r_k >= 1.8 (2 is quadratic).
     let pair = (0..r.len() - 1)
-        .filter(|&k| r[k] < 1e-2 && r[k + 1] > 1e-10)
-        .last()
+        .rev()
+        .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-10)
         .expect("an iteration in the asymptotic range");
     let order = r[pair + 1].ln() / r[pair].ln();
     println!(
