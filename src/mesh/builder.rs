@@ -34,6 +34,15 @@ impl MeshBuilder {
         self.mesh.coords.len()
     }
 
+    pub fn num_cells(&self) -> usize {
+        self.mesh.num_cells()
+    }
+
+    /// Kind and nodes of a cell added so far.
+    pub fn cell(&self, c: usize) -> (CellKind, &[usize]) {
+        (self.mesh.kind(c), self.mesh.cell_nodes(c))
+    }
+
     pub fn coords(&self) -> &[[f64; 2]] {
         &self.mesh.coords
     }

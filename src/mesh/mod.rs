@@ -7,6 +7,7 @@
 //! | `topology.rs` | edge → parent cell adjacency, outward orientation |
 //! | `quality.rs` | min angle, max aspect ratio, bounding box |
 //! | `gmsh.rs` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
+//! | `quadtree.rs` | balanced quadtree → conforming graded quad/triangle cells |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
 //!
 //! Invariants of a finished `Mesh`: every node index is in range, every 2D cell is
@@ -16,6 +17,7 @@ mod builder;
 pub mod cell;
 pub mod generate;
 pub mod gmsh;
+pub mod quadtree;
 pub mod quality;
 pub mod topology;
 
