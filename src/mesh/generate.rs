@@ -150,10 +150,10 @@ fn boundary_edges(b: &MeshBuilder, first_cell: usize) -> Vec<Edge> {
                 .1 += 1;
         }
     }
-    let mut out: Vec<_> = count
+    let mut out: Vec<Edge> = count
         .into_values()
-        .filter(|v| v.3 == 1)
-        .map(|v| (v.0, v.1, v.2))
+        .filter(|v| v.1 == 1)
+        .map(|v| v.0)
         .collect();
     out.sort_unstable();
     out
