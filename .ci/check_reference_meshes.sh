@@ -34,9 +34,9 @@ if errors:
 print("  counts and groups as in the README:", {k: got["cells"][k] for k in exp["cells"]}, "reoriented", got["reoriented"])
 PY
 }
-GROUPS='"Block": 2, "Cylinder": 2, "Top_B": 1, "Bottom_C": 1, "Axe": 1, "Encast": 1, "B": 0, "C": 0, "Force": 0'
-check ssnp154a.msh "{\"nodes\": 2625, \"cells\": {\"Quad4\": 2467, \"Tri3\": 53}, \"groups\": {$GROUPS}}"
-check ssnp154b.msh "{\"nodes\": 7768, \"cells\": {\"Quad8\": 2467, \"Tri6\": 53}, \"groups\": {$GROUPS}}"
+GRP='"Block": 2, "Cylinder": 2, "Top_B": 1, "Bottom_C": 1, "Axe": 1, "Encast": 1, "B": 0, "C": 0, "Force": 0'
+check ssnp154a.msh "{\"nodes\": 2625, \"cells\": {\"Quad4\": 2467, \"Tri3\": 53}, \"groups\": {$GRP}}"
+check ssnp154b.msh "{\"nodes\": 7768, \"cells\": {\"Quad8\": 2467, \"Tri6\": 53}, \"groups\": {$GRP}}"
 
-echo "== elastic stage on the reference meshes"
+echo "== SSNP154 validation on the reference meshes"
 "$TRIBO" validate --meshes "$SHARED" --json target/validate-reference.json

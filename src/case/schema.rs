@@ -198,6 +198,15 @@ pub struct OutputSpec {
     pub vtu: bool,
     #[serde(default)]
     pub probe: Vec<ProbeSpec>,
+    /// Hertz line-contact curve drawn on the pressure plot: half-width a and peak p0.
+    pub hertz: Option<HertzSpec>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct HertzSpec {
+    pub a: f64,
+    pub p0: f64,
 }
 
 impl Default for OutputSpec {
@@ -205,6 +214,7 @@ impl Default for OutputSpec {
         OutputSpec {
             vtu: true,
             probe: vec![],
+            hertz: None,
         }
     }
 }

@@ -80,6 +80,10 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         },
         output: OutputSpec {
             vtu: true,
+            hertz: Some(HertzSpec {
+                a: 6.2146,
+                p0: 3585.36,
+            }),
             probe: vec![
                 ProbeSpec {
                     name: "DY_B".into(),

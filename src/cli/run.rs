@@ -4,6 +4,7 @@ use crate::case;
 use crate::error::{write_atomic, Result};
 use crate::fem::material::von_mises;
 use crate::mesh::Mesh;
+use crate::post::plot;
 use crate::post::vtu::{self, Field};
 use serde_json::json;
 use std::path::{Path, PathBuf};
@@ -24,33 +25,87 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         write_vtu(&f, &mesh, &outcome)?;
         files.push(f.display().to_string());
     }
+    let n_pairs = outcome.contact_pressure.len();
     for (i, pressures) in outcome.contact_pressure.iter().enumerate() {
-        let f = out_dir.join(format!("pressure_{}.csv", i + 1));
-        let mut rows: Vec<(f64, String)> = pressures
-            .iter()
-            .map(|&(n, p)| {
-                let x = mesh.coords[n];
-                let (ux, uy) = (outcome.u[2 * n], outcome.u[2 * n + 1]);
-                (
-                    x[0],
-                    format!(
-                        "{},{},{},{},{},{}\n",
-                        n + 1,
-                        x[0],
-                        x[1],
-                        x[0] + ux,
-                        x[1] + uy,
-                        p
-                    ),
-                )
+        let stem = if n_pairs == 1 {
+            "pressure".to_string()
+        } else {
+            format!("pressure_{}", i + 1)
+        };
+        let hertz = |x: f64| {
+            case.output.hertz.as_ref().map(|h| {
+                if x.abs() < h.a {
+                    h.p0 * (1.0 - (x / h.a).powi(2)).sqrt()
+                } else {
+                    0.0
+                }
             })
+        };
+        let mut rows: Vec<(f64, usize, f64)> = pressures
+            .iter()
+            .map(|&(n, p)| (mesh.coords[n][0], n, p))
             .collect();
         rows.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut text = String::from("node,x,y,x_deformed,y_deformed,pressure\n");
-        for (_, r) in rows {
-            text.push_str(&r);
+        let mut text = String::from("node,x,y,x_deformed,y_deformed,pressure,hertz\n");
+        for &(x, n, p) in &rows {
+            let y = mesh.coords[n][1];
+            let (ux, uy) = (outcome.u[2 * n], outcome.u[2 * n + 1]);
+            let hz = hertz(x).map_or(String::new(), |v| v.to_string());
+            text.push_str(&format!(
+                "{},{x},{y},{},{},{p},{hz}\n",
+                n + 1,
+                x + ux,
+                y + uy
+            ));
         }
+        let f = out_dir.join(format!("{stem}.csv"));
         write_atomic(&f, text.as_bytes())?;
+        files.push(f.display().to_string());
+        let computed: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.2)).collect();
+        let xmax = computed
+            .iter()
+            .filter(|p| p.1.abs() > 0.0)
+            .map(|p| p.0)
+            .fold(0.0, f64::max)
+            * 1.3;
+        let shown: Vec<(f64, f64)> = computed
+            .into_iter()
+            .filter(|p| p.0 <= xmax.max(1e-9))
+            .collect();
+        let curve: Vec<(f64, f64)> = match &case.output.hertz {
+            Some(h) => (0..=200)
+                .map(|k| {
+                    let x = xmax.max(h.a) * k as f64 / 200.0;
+                    (x, hertz(x).unwrap_or(0.0))
+                })
+                .collect(),
+            None => vec![],
+        };
+        let mut series = vec![plot::Series {
+            label: "multipliers (-lambda)",
+            color: "#d62728",
+            points: &shown,
+            markers: true,
+        }];
+        if !curve.is_empty() {
+            series.insert(
+                0,
+                plot::Series {
+                    label: "Hertz",
+                    color: "#1f77b4",
+                    points: &curve,
+                    markers: false,
+                },
+            );
+        }
+        let svg = plot::svg(
+            "Contact pressure",
+            "x (initial position on the slave surface)",
+            "pressure",
+            &series,
+        );
+        let f = out_dir.join(format!("{stem}.svg"));
+        write_atomic(&f, svg.as_bytes())?;
         files.push(f.display().to_string());
     }
     let wall = t0.elapsed().as_secs_f64();
@@ -117,6 +172,18 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, outcome: &case::Outcome) -> Result<()
         .chunks(2)
         .flat_map(|d| [d[0], d[1], 0.0])
         .collect();
+    // contact pressure from the multipliers on slave nodes, and a closed/open flag
+    let mut cp = vec![0.0; mesh.num_nodes()];
+    let mut status = vec![0.0; mesh.num_nodes()];
+    let pmax = outcome
+        .contact_pressure
+        .iter()
+        .flatten()
+        .fold(0.0f64, |m, p| m.max(p.1.abs()));
+    for &(n, p) in outcome.contact_pressure.iter().flatten() {
+        cp[n] = p;
+        status[n] = if p > 1e-9 * pmax { 1.0 } else { 0.0 };
+    }
     let mut group_fields = vec![];
     for (name, members) in &mesh.cell_groups {
         if mesh.group_dim(name) != Some(2) {
@@ -155,6 +222,20 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, outcome: &case::Outcome) -> Result<()
             components: &["RX", "RY", "RZ"],
         },
     ];
+    if !outcome.contact_pressure.is_empty() {
+        fields.push(Field::Point {
+            name: "contact_pressure",
+            ncomp: 1,
+            values: &cp,
+            components: &[],
+        });
+        fields.push(Field::Point {
+            name: "contact_closed",
+            ncomp: 1,
+            values: &status,
+            components: &[],
+        });
+    }
     for (name, vals) in &group_fields {
         fields.push(Field::CellInt { name, values: vals });
     }
