@@ -62,9 +62,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         write_atomic(&f, text.as_bytes())?;
         files.push(f.display().to_string());
         let computed: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.2)).collect();
+        let pmax = computed.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
         let xmax = computed
             .iter()
-            .filter(|p| p.1.abs() > 0.0)
+            .filter(|p| p.1.abs() > 1e-6 * pmax)
             .map(|p| p.0)
             .fold(0.0, f64::max)
             * 1.3;
