@@ -2,7 +2,7 @@
 //! time of assembly, symbolic + numeric Cholesky, numeric refactorisation, solve, and the
 //! process peak memory. Also times reading the reference meshes when ../shared is present.
 //!
-//! Run: `cargo bench --bench elastic [-- MAX_DOFS]` (default up to ~1M dofs).
+//! Run: `cargo bench --bench elastic [-- MAX_DOFS]` (default up to ~1.4M dofs).
 
 use std::path::Path;
 use std::time::Instant;
@@ -24,7 +24,7 @@ fn main() {
     let max_dofs: usize = std::env::args()
         .skip(1)
         .find_map(|a| a.parse().ok())
-        .unwrap_or(1_100_000);
+        .unwrap_or(1_500_000);
     for file in ["ssnp154a.msh", "ssnp154b.msh"] {
         let p = Path::new("../shared/ssnp154").join(file);
         if p.exists() {
@@ -50,7 +50,17 @@ fn main() {
         "total s",
         "peak MiB"
     );
-    for (size, refine) in [(1.5, 0), (1.5, 1), (1.5, 2), (1.5, 3), (1.5, 4), (1.5, 5)] {
+    for (size, refine) in [
+        (1.5, 0),
+        (1.5, 1),
+        (1.5, 2),
+        (1.5, 3),
+        (1.5, 4),
+        (6.0, 5),
+        (3.0, 5),
+        (2.0, 5),
+        (1.5, 5),
+    ] {
         let t = Instant::now();
         let mesh = generate(&Ssnp154Options {
             quadratic: false,
@@ -60,7 +70,7 @@ fn main() {
         .unwrap();
         let t_mesh = t.elapsed().as_secs_f64();
         if 2 * mesh.num_nodes() > max_dofs {
-            break;
+            continue;
         }
         let case = ssnp154::glued_case(ssnp154::builtin_mesh(false, size), Kinematics::Small);
         let t0 = Instant::now();

@@ -45,7 +45,7 @@ impl SparseMatrix {
             .map(|p| range.start + p)
     }
 
-    /// y = A x
+    /// y = A x (for a matrix storing both triangles)
     pub fn mul_vec(&self, x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
         for c in 0..self.n {

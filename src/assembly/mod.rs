@@ -36,15 +36,19 @@ pub struct Assembler {
     pub cell_model: Vec<SolidModel>,
     scatter_start: Vec<usize>,
     scatter: Vec<u32>,
+    /// Only the lower triangle is stored (enough for Cholesky; halves the memory).
+    pub lower_only: bool,
 }
 
 impl Assembler {
-    /// `cells[i]` gets `models[i]`. Builds the pattern over the free dofs.
+    /// `cells[i]` gets `models[i]`. Builds the pattern over the free dofs; with
+    /// `lower_only`, only its lower triangle (rows ≥ column) is stored and assembled.
     pub fn new(
         mesh: &Mesh,
         cells: Vec<usize>,
         models: Vec<SolidModel>,
         dofs: DofMap,
+        lower_only: bool,
     ) -> Result<Self> {
         let nf = dofs.num_free;
         // Free unknowns touched by each cell.
@@ -85,7 +89,7 @@ impl Assembler {
             let mut col = vec![];
             for &i in &cells_of[count[j]..count[j + 1]] {
                 for &k in &touched[touched_start[i]..touched_start[i + 1]] {
-                    if mark[k] != j {
+                    if mark[k] != j && (!lower_only || k >= j) {
                         mark[k] = j;
                         col.push(k);
                     }
@@ -113,6 +117,7 @@ impl Assembler {
                 for b in 0..nd {
                     let rb = dofs.roles[2 * nodes[b / 2] + b % 2];
                     let pos = match (ra, rb) {
+                        (Role::Free(i), Role::Free(j)) if lower_only && i < j => NONE,
                         (Role::Free(i), Role::Free(j)) => matrix.position(i, j).unwrap() as u32,
                         (Role::Fixed, _) | (_, Role::Fixed) => NONE,
                         _ => LINKED,
@@ -129,6 +134,7 @@ impl Assembler {
             cell_model: models,
             scatter_start,
             scatter,
+            lower_only,
         })
     }
 
@@ -215,6 +221,9 @@ impl Assembler {
                             self.dofs.expand_dof(db, &mut tmp_b);
                             for &(i2, ca) in &tmp_a {
                                 for &(j2, cb) in &tmp_b {
+                                    if self.lower_only && i2 < j2 {
+                                        continue;
+                                    }
                                     let pos =
                                         self.matrix.position(i2, j2).expect("pattern covers links");
                                     self.matrix.values[pos] += ca * cb * ke[a * nd + b];

@@ -250,7 +250,8 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
         )
         .map_err(|e| Error::model(format!("[[traction]]: {e}")))?;
     }
-    let asm = Assembler::new(mesh, cells, models, dofs)?;
+    // Without contact the matrix is SPD: Cholesky reads the lower triangle only.
+    let asm = Assembler::new(mesh, cells, models, dofs, case.contact.is_empty())?;
     Ok(SolidProblem::new(mesh, asm, fext))
 }
 

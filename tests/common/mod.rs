@@ -37,7 +37,7 @@ pub fn solve_elastic<'m>(
         }
     }
     let dofs = DofMap::new(&used, fixed, &[]).unwrap();
-    let asm = Assembler::new(mesh, cells, models, dofs).unwrap();
+    let asm = Assembler::new(mesh, cells, models, dofs, true).unwrap();
     let mut p = SolidProblem::new(mesh, asm, fext);
     solve(&mut p, &NewtonSettings::default(), Method::Cholesky).unwrap();
     p
