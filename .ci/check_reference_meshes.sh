@@ -40,3 +40,5 @@ check ssnp154b.msh "{\"nodes\": 7768, \"cells\": {\"Quad8\": 2467, \"Tri6\": 53}
 
 echo "== SSNP154 validation on the reference meshes"
 "$TRIBO" validate --meshes "$SHARED" --json target/validate-reference.json
+echo "== SSNP154 with the mortar formulation on the reference meshes"
+"$TRIBO" validate --meshes "$SHARED" --formulation mortar --json target/validate-reference-mortar.json

@@ -11,6 +11,8 @@ pub mod ssnp154;
 use crate::assembly::dofs::{DofMap, Relation};
 use crate::assembly::loads::{add_edge_load, add_nodal_force, EdgeLoad};
 use crate::assembly::Assembler;
+use crate::contact::mortar::Mortar;
+use crate::contact::pair::ContactPair;
 use crate::contact::point_segment::{self, InitialStatus, Integration, PointToSegment};
 use crate::contact::problem::ContactProblem;
 use crate::contact::surface::Surface;
@@ -331,8 +333,8 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
 }
 
 /// The contact pairs of a case.
-pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<PointToSegment>> {
-    let mut pairs = vec![];
+pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
+    let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
     for (i, c) in case.contact.iter().enumerate() {
         let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
         if c.slave == c.master {
@@ -376,9 +378,36 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<PointToSegment>> 
         }
         match c.formulation.as_str() {
             "point-to-segment" => {}
+            "mortar" => {
+                // complementarity parameter: stiffest-scale E over the shortest slave cell
+                let e_min = case
+                    .material
+                    .iter()
+                    .map(|m| m.young)
+                    .fold(f64::INFINITY, f64::min);
+                let h_min = slave
+                    .cells
+                    .iter()
+                    .map(|&e| {
+                        let n = mesh.cell_nodes(e);
+                        let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+                        (a[0] - b[0]).hypot(a[1] - b[1])
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                pairs.push(Box::new(Mortar::new(
+                    mesh,
+                    slave,
+                    master,
+                    e_min / h_min,
+                    case.model.modelisation,
+                    case.model.thickness,
+                    case.model.kinematics == Kinematics::Small,
+                )));
+                continue;
+            }
             other => {
                 return Err(Error::model(format!(
-                    "{what}: formulation '{other}' is not one of point-to-segment"
+                    "{what}: formulation '{other}' is not one of point-to-segment, mortar"
                 )))
             }
         }
@@ -388,14 +417,14 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<PointToSegment>> 
             initial,
             ..Default::default()
         };
-        pairs.push(PointToSegment::new(
+        pairs.push(Box::new(PointToSegment::new(
             mesh,
             slave,
             master,
             opts,
             case.model.modelisation,
             case.model.thickness,
-        ));
+        )));
     }
     Ok(pairs)
 }
@@ -427,7 +456,9 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        let method = if std::env::var("TRIBO_LU").is_ok() {
+        // The mortar tangent (finite-difference geometry terms) is not symmetric enough for
+        // the refined LDLT: it goes to LU.
+        let method = if case.contact.iter().any(|c| c.formulation == "mortar") {
             Method::Lu
         } else {
             Method::SaddleLdlt

@@ -4,9 +4,13 @@
 //! |---|---|
 //! | `surface.rs` | contact surfaces from edge groups: connected chains with outward sides |
 //! | `projection.rs` | closest-point projection on Seg2/Seg3 segments |
+//! | `pair.rs` | the `ContactPair` interface of the formulations |
+//! | `mortar.rs` | dual mortar, nodal weighted gaps and active set (our default) |
 //! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
 //! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 
+pub mod mortar;
+pub mod pair;
 pub mod point_segment;
 pub mod problem;
 pub mod projection;

@@ -32,7 +32,7 @@ pub enum Integration {
 pub enum InitialStatus {
     /// Every point starts active (the reference's CONTACT_INIT = OUI).
     All,
-    /// Points with a non-positive initial gap start active.
+    /// Points whose initial gap is closed (within 1e-3 of the shortest slave cell) start active.
     Closed,
 }
 
@@ -189,7 +189,9 @@ impl PointToSegment {
             let active = !p.excluded
                 && match self.opts.initial {
                     InitialStatus::All => true,
-                    InitialStatus::Closed => self.eval(mesh, &u, i).d >= 0.0,
+                    InitialStatus::Closed => {
+                        self.eval(mesh, &u, i).d >= -self.touch_tolerance(mesh)
+                    }
                 };
             self.points[i].active = active;
         }
@@ -333,6 +335,22 @@ impl PointToSegment {
             .enumerate()
             .map(|(a, n)| ns[a] * lam[self.mult_of[n]])
             .sum()
+    }
+
+    /// Open gap below which a point counts as initially touching: 1e-3 of the shortest
+    /// slave cell (so that the Gauss point nearest a single initial contact point is closed).
+    fn touch_tolerance(&self, mesh: &Mesh) -> f64 {
+        let shortest = self
+            .slave
+            .cells
+            .iter()
+            .map(|&c| {
+                let n = mesh.cell_nodes(c);
+                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+            .fold(f64::INFINITY, f64::min);
+        1e-3 * shortest
     }
 
     /// Re-pairs every point at the displacement u.
@@ -540,7 +558,7 @@ impl PointToSegment {
 
 /// Master cells within reach of each slave cell on the initial geometry: those whose
 /// bounding box, grown by the larger of the two cells' sizes, meets the slave cell's.
-fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec<usize>> {
+pub fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec<usize>> {
     let bbox = |c: usize| {
         let mut lo = [f64::MAX; 2];
         let mut hi = [f64::MIN; 2];
@@ -570,4 +588,37 @@ fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec
                 .collect()
         })
         .collect()
+}
+
+impl super::pair::ContactPair for PointToSegment {
+    fn num_multipliers(&self) -> usize {
+        self.num_multipliers()
+    }
+    fn initialise(&mut self, mesh: &Mesh) {
+        self.initialise(mesh)
+    }
+    fn contribute(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        lam: &[f64],
+        ru: &mut [f64],
+        rl: &mut [f64],
+        k: &mut Triplets,
+        mult_base: usize,
+    ) {
+        self.contribute(mesh, u, lam, ru, rl, k, mult_base)
+    }
+    fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
+        self.update_status(mesh, u, lam)
+    }
+    fn commit(&mut self) {
+        self.commit()
+    }
+    fn restore(&mut self) {
+        self.restore()
+    }
+    fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
+        self.nodal_pressures(lam)
+    }
 }

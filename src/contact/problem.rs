@@ -2,7 +2,7 @@
 //! followed by the multipliers of every pair; the matrix is the solid one plus the contact
 //! blocks (symmetric indefinite: solved with LU).
 
-use super::point_segment::PointToSegment;
+use super::pair::ContactPair;
 use crate::assembly::coupled::{CoupledMatrix, Triplets};
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::Result;
@@ -11,7 +11,7 @@ use crate::solver::problem::{Norms, SolidProblem};
 
 pub struct ContactProblem<'m> {
     pub solid: SolidProblem<'m>,
-    pub pairs: Vec<PointToSegment>,
+    pub pairs: Vec<Box<dyn ContactPair>>,
     /// First multiplier index of each pair.
     pub mult_base: Vec<usize>,
     /// All multipliers, current values.
@@ -23,7 +23,7 @@ pub struct ContactProblem<'m> {
 }
 
 impl<'m> ContactProblem<'m> {
-    pub fn new(solid: SolidProblem<'m>, mut pairs: Vec<PointToSegment>) -> Self {
+    pub fn new(solid: SolidProblem<'m>, mut pairs: Vec<Box<dyn ContactPair>>) -> Self {
         let mut mult_base = vec![];
         let mut n = 0;
         for p in &mut pairs {

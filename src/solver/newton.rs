@@ -133,6 +133,17 @@ pub fn solve(
                 failure = Some("non-finite residual".to_string());
                 break;
             }
+            // Divergence: a residual a thousand times the best one of this step (after the
+            // first corrections) is not going to come back in time; cut the step instead.
+            let best = step
+                .iterations
+                .iter()
+                .map(|i| i.relative_residual)
+                .fold(f64::INFINITY, f64::min);
+            if it >= 3 && rel > 1e3 * best {
+                failure = Some(format!("divergence (residual {rel:.1e})"));
+                break;
+            }
             if it > 0 && changes == 0 && (rel <= settings.tolerance || norms.residual == 0.0) {
                 step.converged = true;
                 break;

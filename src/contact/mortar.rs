@@ -1,0 +1,574 @@
+//! The `mortar` formulation (our default): segment-to-segment mortar with dual multipliers
+//! on the slave nodes, nodal weighted gaps and a nodal active set (semi-smooth Newton on
+//! the complementarity function), averaged slave normals (contact.md §5.2).
+//!
+//! For each slave cell the master cells it faces are found by projecting along the slave
+//! normal field n(ξ) = Σ N_k n_k (nodal normals averaged over the adjacent slave cells);
+//! each overlap segment is integrated with Gauss points. With the dual basis Φ_j
+//! (∫ Φ_j N_k = δ_jk ∫ N_k on each cell):
+//!   weighted gap  g̃_j = ∫ Φ_j (x_m − x_s)·n̂ dγ          (open > 0)
+//!   forces        slave  +λ_j ∫ Φ_j N_s n̂ dγ,   master  −λ_j ∫ Φ_j N_m n̂ dγ   (in r = f_int − f_ext + …)
+//! λ_j ≥ 0 is the contact pressure at slave node j. Node j is active iff λ_j − c g̃_j/D_j > 0
+//! (D_j = ∫ N_j); active rows enforce g̃_j = 0, inactive ones λ_j = 0.
+//!
+//! Linearisation: the derivatives of the weighted gaps and of the mortar force coefficients
+//! with respect to the displacements are taken by central finite differences, cell by
+//! cell (each perturbed dof only re-evaluates the slave cells that read it). They contain
+//! every geometric variation (normals, segment ends, projections, Jacobians) to ~1e-8.
+
+use super::pair::ContactPair;
+use super::point_segment::initial_candidates;
+use super::projection::point_and_tangent;
+use super::surface::Surface;
+use crate::assembly::coupled::Triplets;
+use crate::fem::element::{shape, shape_grad, MAX_NODES};
+use crate::fem::material::Modelisation;
+use crate::fem::quadrature::gauss_legendre;
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+pub struct Mortar {
+    pub slave: Surface,
+    pub master: Surface,
+    /// Complementarity parameter c (stress / length).
+    pub c: f64,
+    pub mult_nodes: Vec<usize>,
+    mult_of: HashMap<usize, usize>,
+    /// slave cells around each slave node (for the averaged normals)
+    cells_of_node: HashMap<usize, Vec<usize>>,
+    candidates: Vec<Vec<usize>>,
+    /// for each full dof read by some slave cell's evaluation, those cells
+    readers: HashMap<usize, Vec<usize>>,
+    active: Vec<bool>,
+    saved: Vec<bool>,
+    axisymmetric: bool,
+    thickness: f64,
+    small: bool,
+}
+
+/// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
+/// its D_j = ∫ N_j, and force coefficients (dof, value) per unit λ_j.
+#[derive(Default, Clone)]
+struct CellTerms {
+    gap: Vec<(usize, f64)>,
+    dj: Vec<(usize, f64)>,
+    /// ∫ N_j over the parts of the cell that face the master surface
+    cover: Vec<(usize, f64)>,
+    force: Vec<(usize, usize, f64)>,
+}
+
+fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+impl Mortar {
+    pub fn new(
+        mesh: &Mesh,
+        slave: Surface,
+        master: Surface,
+        c: f64,
+        model: Modelisation,
+        thickness: f64,
+        small: bool,
+    ) -> Self {
+        let mult_nodes = slave.nodes.clone();
+        let mult_of: HashMap<usize, usize> = mult_nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, k))
+            .collect();
+        let mut cells_of_node: HashMap<usize, Vec<usize>> = HashMap::new();
+        for (ic, &c) in slave.cells.iter().enumerate() {
+            for &n in &mesh.cell_nodes(c)[..2] {
+                cells_of_node.entry(n).or_default().push(ic);
+            }
+        }
+        let candidates = initial_candidates(mesh, &slave, &master);
+        let mut m = Mortar {
+            slave,
+            master,
+            c,
+            mult_nodes,
+            mult_of,
+            cells_of_node,
+            candidates,
+            readers: HashMap::new(),
+            active: vec![],
+            saved: vec![],
+            axisymmetric: model == Modelisation::Axisymmetric,
+            thickness,
+            small,
+        };
+        m.active = vec![false; m.mult_nodes.len()];
+        m.saved = m.active.clone();
+        m.build_readers(mesh);
+        m
+    }
+
+    fn build_readers(&mut self, mesh: &Mesh) {
+        self.readers.clear();
+        for ic in 0..self.slave.cells.len() {
+            for n in self.nodes_read(mesh, ic) {
+                for d in [2 * n, 2 * n + 1] {
+                    self.readers.entry(d).or_default().push(ic);
+                }
+            }
+        }
+    }
+
+    /// Nodes whose positions the evaluation of slave cell ic depends on.
+    fn nodes_read(&self, mesh: &Mesh, ic: usize) -> Vec<usize> {
+        let c = self.slave.cells[ic];
+        let mut nodes: Vec<usize> = mesh.cell_nodes(c).to_vec();
+        for &n in &mesh.cell_nodes(c)[..2] {
+            for &jc in &self.cells_of_node[&n] {
+                nodes.extend_from_slice(mesh.cell_nodes(self.slave.cells[jc]));
+            }
+        }
+        for &im in &self.candidates[ic] {
+            nodes.extend_from_slice(mesh.cell_nodes(self.master.cells[im]));
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
+    fn pos(mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        [
+            mesh.coords[n][0] + u[2 * n],
+            mesh.coords[n][1] + u[2 * n + 1],
+        ]
+    }
+
+    /// Where the geometry (normals, projections, Jacobians) is evaluated: the current
+    /// position for large kinematics, the reference one for small kinematics (whose
+    /// multipliers are then pressures on the reference surface, like the loads).
+    fn geo(&self, mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        if self.small {
+            mesh.coords[n]
+        } else {
+            Self::pos(mesh, u, n)
+        }
+    }
+
+    /// Outward unit normal of slave cell ic at ξ.
+    fn cell_normal(&self, mesh: &Mesh, u: &[f64], ic: usize, xi: f64) -> [f64; 2] {
+        let c = self.slave.cells[ic];
+        let x: Vec<[f64; 2]> = mesh
+            .cell_nodes(c)
+            .iter()
+            .map(|&n| self.geo(mesh, u, n))
+            .collect();
+        let (_, t) = point_and_tangent(mesh.kind(c), &x, xi);
+        let l = t[0].hypot(t[1]);
+        if self.slave.ccw[ic] {
+            [t[1] / l, -t[0] / l]
+        } else {
+            [-t[1] / l, t[0] / l]
+        }
+    }
+
+    /// Averaged outward unit normal at a slave corner node.
+    fn node_normal(&self, mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        let mut acc = [0.0; 2];
+        for &ic in &self.cells_of_node[&n] {
+            let nodes = mesh.cell_nodes(self.slave.cells[ic]);
+            let xi = if nodes[0] == n { -1.0 } else { 1.0 };
+            let v = self.cell_normal(mesh, u, ic, xi);
+            acc[0] += v[0];
+            acc[1] += v[1];
+        }
+        let l = acc[0].hypot(acc[1]);
+        [acc[0] / l, acc[1] / l]
+    }
+
+    /// The terms of slave cell ic at displacement u.
+    fn cell_terms(&self, mesh: &Mesh, u: &[f64], ic: usize) -> CellTerms {
+        let c = self.slave.cells[ic];
+        let kind = mesh.kind(c);
+        let nn = kind.num_nodes();
+        let snodes = mesh.cell_nodes(c);
+        let xs: Vec<[f64; 2]> = snodes.iter().map(|&n| self.geo(mesh, u, n)).collect();
+        let us: Vec<[f64; 2]> = snodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect();
+        // nodal normals: averaged at corners, the cell's own at a mid-side node
+        let normals: Vec<[f64; 2]> = (0..nn)
+            .map(|a| {
+                if a < 2 {
+                    self.node_normal(mesh, u, snodes[a])
+                } else {
+                    self.cell_normal(mesh, u, ic, 0.0)
+                }
+            })
+            .collect();
+        let (gp, gw) = gauss_legendre(6);
+        // dual basis: Φ = A N with A = D M⁻¹ on this cell (current geometry)
+        let mut m = [[0.0; 3]; 3];
+        let mut d = [0.0; 3];
+        for (q, &xi) in gp.iter().enumerate() {
+            let (p, t) = point_and_tangent(kind, &xs, xi);
+            let j = t[0].hypot(t[1]) * gw[q] * self.measure(p);
+            let mut nv = [0.0; MAX_NODES];
+            shape(kind, [xi, 0.0], &mut nv);
+            for a in 0..nn {
+                d[a] += nv[a] * j;
+                for b in 0..nn {
+                    m[a][b] += nv[a] * nv[b] * j;
+                }
+            }
+        }
+        let minv = invert(&m, nn);
+        let mut amat = [[0.0; 3]; 3];
+        for a in 0..nn {
+            for b in 0..nn {
+                amat[a][b] = d[a] * minv[a][b];
+            }
+        }
+        let field = |xi: f64| -> ([f64; MAX_NODES], [f64; 2], [f64; 2], [f64; 2]) {
+            let mut nv = [0.0; MAX_NODES];
+            shape(kind, [xi, 0.0], &mut nv);
+            let (p, t) = point_and_tangent(kind, &xs, xi);
+            let mut nf = [0.0; 2];
+            for a in 0..nn {
+                nf[0] += nv[a] * normals[a][0];
+                nf[1] += nv[a] * normals[a][1];
+            }
+            (nv, p, t, nf)
+        };
+        let mut out = CellTerms::default();
+        for a in 0..nn {
+            out.dj.push((self.mult_of[&snodes[a]], d[a]));
+        }
+        for &im in &self.candidates[ic] {
+            let mc = self.master.cells[im];
+            let mkind = mesh.kind(mc);
+            let mnodes = mesh.cell_nodes(mc);
+            let xm: Vec<[f64; 2]> = mnodes.iter().map(|&n| self.geo(mesh, u, n)).collect();
+            let um: Vec<[f64; 2]> = mnodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect();
+            // master end nodes projected on the slave cell along the normal field
+            let proj_slave = |target: [f64; 2]| -> Option<f64> {
+                let mut xi = 0.0;
+                for _ in 0..30 {
+                    let (_, p, t, nf) = field(xi);
+                    let r = cross([target[0] - p[0], target[1] - p[1]], nf);
+                    // derivative: −t × n + (target − p) × n'  (n' from the nodal normals)
+                    let mut dn = [[0.0; 2]; MAX_NODES];
+                    shape_grad(kind, [xi, 0.0], &mut dn);
+                    let mut nd = [0.0; 2];
+                    for a in 0..nn {
+                        nd[0] += dn[a][0] * normals[a][0];
+                        nd[1] += dn[a][0] * normals[a][1];
+                    }
+                    let dr = -cross(t, nf) + cross([target[0] - p[0], target[1] - p[1]], nd);
+                    if dr.abs() < 1e-300 {
+                        return None;
+                    }
+                    let step = r / dr;
+                    xi -= step;
+                    if step.abs() < 1e-13 {
+                        return Some(xi);
+                    }
+                    if xi.abs() > 10.0 {
+                        return None;
+                    }
+                }
+                None
+            };
+            let (Some(xa), Some(xb)) = (proj_slave(xm[0]), proj_slave(xm[1])) else {
+                continue;
+            };
+            let lo = xa.min(xb).max(-1.0);
+            let hi = xa.max(xb).min(1.0);
+            if hi - lo < 1e-12 {
+                continue;
+            }
+            for (q, &g) in gp.iter().enumerate() {
+                let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
+                let (nv, p, t, nf) = field(xi);
+                // project along the normal field on the master cell
+                let mut xim = 0.0;
+                let mut ok = false;
+                for _ in 0..30 {
+                    let (pm, tm) = point_and_tangent(mkind, &xm, xim);
+                    let r = cross([pm[0] - p[0], pm[1] - p[1]], nf);
+                    let dr = cross(tm, nf);
+                    let step = r / dr;
+                    xim -= step;
+                    if step.abs() < 1e-13 {
+                        ok = true;
+                        break;
+                    }
+                }
+                if !ok || xim.abs() > 1.0 + 1e-9 {
+                    continue;
+                }
+                let (mut pm, _) = point_and_tangent(mkind, &xm, xim);
+                let mut ps = p;
+                if self.small {
+                    // geometry on the reference configuration, gap with the displacements
+                    let (dm, _) = point_and_tangent(mkind, &um, xim);
+                    let (ds, _) = point_and_tangent(kind, &us, xi);
+                    pm = [pm[0] + dm[0], pm[1] + dm[1]];
+                    ps = [p[0] + ds[0], p[1] + ds[1]];
+                }
+                let ln = nf[0].hypot(nf[1]);
+                let nhat = [nf[0] / ln, nf[1] / ln];
+                let gap = (pm[0] - ps[0]) * nhat[0] + (pm[1] - ps[1]) * nhat[1];
+                let w = gw[q] * 0.5 * (hi - lo) * t[0].hypot(t[1]) * self.measure(p);
+                let mut nm = [0.0; MAX_NODES];
+                shape(mkind, [xim, 0.0], &mut nm);
+                for j in 0..nn {
+                    let phi: f64 = (0..nn).map(|b| amat[j][b] * nv[b]).sum();
+                    let k = self.mult_of[&snodes[j]];
+                    out.gap.push((k, w * phi * gap));
+                    out.cover.push((k, w * nv[j]));
+                    for a in 0..nn {
+                        for comp in 0..2 {
+                            out.force
+                                .push((k, 2 * snodes[a] + comp, w * phi * nv[a] * nhat[comp]));
+                        }
+                    }
+                    for (b, &mn) in mnodes.iter().enumerate() {
+                        for comp in 0..2 {
+                            out.force
+                                .push((k, 2 * mn + comp, -w * phi * nm[b] * nhat[comp]));
+                        }
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    fn measure(&self, p: [f64; 2]) -> f64 {
+        if self.axisymmetric {
+            2.0 * std::f64::consts::PI * p[0]
+        } else {
+            self.thickness
+        }
+    }
+
+    /// Weighted gaps, D_j and whether each slave node faces the master surface (at least
+    /// half of ∫ N_j is covered by master segments) at u.
+    fn gaps(&self, mesh: &Mesh, u: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
+        let nm = self.mult_nodes.len();
+        let (mut g, mut d, mut cov) = (vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]);
+        for ic in 0..self.slave.cells.len() {
+            let t = self.cell_terms(mesh, u, ic);
+            for (k, v) in t.gap {
+                g[k] += v;
+            }
+            for (k, v) in t.dj {
+                d[k] += v;
+            }
+            for (k, v) in t.cover {
+                cov[k] += v;
+            }
+        }
+        let facing = (0..nm).map(|k| cov[k] > 0.5 * d[k]).collect();
+        (g, d, facing)
+    }
+}
+
+fn invert(m: &[[f64; 3]; 3], n: usize) -> [[f64; 3]; 3] {
+    let mut a = *m;
+    let mut inv = [[0.0; 3]; 3];
+    for i in 0..n {
+        inv[i][i] = 1.0;
+    }
+    for col in 0..n {
+        let piv = (col..n)
+            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
+            .unwrap();
+        a.swap(col, piv);
+        inv.swap(col, piv);
+        let dv = a[col][col];
+        for j in 0..n {
+            a[col][j] /= dv;
+            inv[col][j] /= dv;
+        }
+        for r in 0..n {
+            if r != col {
+                let f = a[r][col];
+                for j in 0..n {
+                    a[r][j] -= f * a[col][j];
+                    inv[r][j] -= f * inv[col][j];
+                }
+            }
+        }
+    }
+    inv
+}
+
+impl ContactPair for Mortar {
+    fn num_multipliers(&self) -> usize {
+        self.mult_nodes.len()
+    }
+
+    fn initialise(&mut self, mesh: &Mesh) {
+        // Nodes already touching (normalised gap within 1e-6 of the cell size) start active.
+        let u = vec![0.0; 2 * mesh.num_nodes()];
+        let (g, d, facing) = self.gaps(mesh, &u);
+        for k in 0..self.active.len() {
+            self.active[k] = facing[k] && g[k] / d[k] <= 1e-6 * d[k];
+        }
+        self.saved = self.active.clone();
+    }
+
+    fn contribute(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        lam: &[f64],
+        ru: &mut [f64],
+        rl: &mut [f64],
+        k: &mut Triplets,
+        mult_base: usize,
+    ) {
+        let ndof = 2 * mesh.num_nodes();
+        let nm = self.mult_nodes.len();
+        let terms: Vec<CellTerms> = (0..self.slave.cells.len())
+            .map(|ic| self.cell_terms(mesh, u, ic))
+            .collect();
+        let (mut g, mut d) = (vec![0.0; nm], vec![0.0; nm]);
+        for t in &terms {
+            for &(j, v) in &t.gap {
+                g[j] += v;
+            }
+            for &(j, v) in &t.dj {
+                d[j] += v;
+            }
+            for &(j, dof, v) in &t.force {
+                ru[dof] += lam[j] * v;
+                // K_uλ
+                k.add(dof, ndof + mult_base + j, v);
+            }
+        }
+        // Augmentation on active nodes: the force of the energy (c/2) g̃_j²/D_j, zero at
+        // convergence (g̃_j = 0) but giving the displacement block the stiffness that holds
+        // bodies only held by contact, so that the saddle-point LDLT needs no pivoting.
+        let mut fj: Vec<Vec<(usize, f64)>> = vec![vec![]; nm];
+        for t in &terms {
+            for &(j, dof, v) in &t.force {
+                if self.active[j] {
+                    fj[j].push((dof, v));
+                }
+            }
+        }
+        for j in 0..nm {
+            if self.active[j] {
+                for &(dof, v) in &fj[j] {
+                    ru[dof] += -self.c * g[j] / d[j] * v;
+                }
+            }
+        }
+        for j in 0..nm {
+            if self.active[j] {
+                rl[j] += -g[j];
+            } else {
+                rl[j] += -lam[j] * d[j] / self.c;
+                k.add(ndof + mult_base + j, ndof + mult_base + j, -d[j] / self.c);
+            }
+        }
+        // u-derivatives by central differences, cell by cell.
+        let mut up = u.to_vec();
+        let mut dofs: Vec<usize> = self.readers.keys().copied().collect();
+        dofs.sort_unstable();
+        for &dof in &dofs {
+            let h = 1e-7 * (1.0 + mesh.coords[dof / 2][dof % 2].abs().max(1.0));
+            let mut dg = vec![0.0; nm];
+            let mut dd = vec![0.0; nm];
+            let mut df: HashMap<(usize, usize), f64> = HashMap::new();
+            for (sign, s) in [(1.0, h), (-1.0, -h)] {
+                up[dof] = u[dof] + s;
+                for &ic in &self.readers[&dof] {
+                    let t = self.cell_terms(mesh, &up, ic);
+                    for (j, v) in t.gap {
+                        dg[j] += sign * v / (2.0 * h);
+                    }
+                    for (j, v) in t.dj {
+                        dd[j] += sign * v / (2.0 * h);
+                    }
+                    for (j, row, v) in t.force {
+                        *df.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
+                    }
+                }
+            }
+            up[dof] = u[dof];
+            for ((j, row), v) in df {
+                let aug = if self.active[j] {
+                    -self.c * g[j] / d[j]
+                } else {
+                    0.0
+                };
+                k.add(row, dof, (lam[j] + aug) * v);
+            }
+            for j in 0..nm {
+                if self.active[j] && (dg[j] != 0.0 || dd[j] != 0.0) {
+                    let (gj, dj) = (g[j], d[j]);
+                    for &(row, v) in &fj[j] {
+                        k.add(
+                            row,
+                            dof,
+                            -self.c * (v / dj * dg[j] - gj * v / (dj * dj) * dd[j]),
+                        );
+                    }
+                }
+            }
+            for j in 0..nm {
+                let v = if self.active[j] {
+                    -dg[j]
+                } else {
+                    -lam[j] * dd[j] / self.c
+                };
+                if v != 0.0 {
+                    k.add(ndof + mult_base + j, dof, v);
+                }
+            }
+        }
+        // pattern: every reader dof couples with every dof and multiplier of its cells
+        for (ic, &sc) in self.slave.cells.iter().enumerate() {
+            let nodes = self.nodes_read(mesh, ic);
+            let mults: Vec<usize> = mesh
+                .cell_nodes(sc)
+                .iter()
+                .map(|n| ndof + mult_base + self.mult_of[n])
+                .collect();
+            let mut all: Vec<usize> = nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
+            all.extend_from_slice(&mults);
+            for &r in &all {
+                for &cc in &all {
+                    k.add(r, cc, 0.0);
+                }
+            }
+        }
+    }
+
+    fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
+        let (g, d, facing) = self.gaps(mesh, u);
+        let mut changes = 0;
+        for j in 0..self.active.len() {
+            let active = facing[j] && lam[j] - self.c * g[j] / d[j] > 0.0;
+            if active != self.active[j] {
+                changes += 1;
+                self.active[j] = active;
+            }
+        }
+        changes
+    }
+
+    fn commit(&mut self) {
+        self.saved = self.active.clone();
+    }
+
+    fn restore(&mut self) {
+        self.active = self.saved.clone();
+    }
+
+    fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
+        self.mult_nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, lam[k]))
+            .collect()
+    }
+}
