@@ -40,6 +40,7 @@ pub fn validate(
         "time s"
     );
     let mut rows = vec![];
+    let mut pressure_lines = vec![];
     let mut all_pass = true;
     for id in ssnp154::AVAILABLE {
         let &(_, quadratic, dy_ref, siyy_ref) =
@@ -111,12 +112,36 @@ pub fn validate(
                 json!({"value": v, "reference": reference, "rel_error": e, "tolerance": tolerance, "pass": pass}),
             );
         }
+        // Smoothness of the multiplier pressure: largest deviation from Hertz inside 0.9 a.
+        let (a, p0) = (6.2146, 3585.36);
+        let dev = out
+            .contact_pressure
+            .first()
+            .map(|ps| {
+                ps.iter()
+                    .filter(|&&(n, _)| mesh.coords[n][0].abs() < 0.9 * a)
+                    .map(|&(n, p)| {
+                        let x = mesh.coords[n][0];
+                        (p - p0 * (1.0 - (x / a).powi(2)).sqrt()).abs() / p0
+                    })
+                    .fold(0.0, f64::max)
+            })
+            .unwrap_or(f64::NAN);
+        pressure_lines.push(format!(
+            "{id}: multiplier pressure within 0.9 a deviates from Hertz by at most {:.2} % of p0",
+            100.0 * dev
+        ));
+        entry.insert("pressure_max_deviation_from_hertz".into(), json!(dev));
         entry.insert(
             "newton_iterations".into(),
             json!(out.report.total_iterations),
         );
         entry.insert("wall_s".into(), json!(wall));
         rows.push(serde_json::Value::Object(entry));
+    }
+    println!();
+    for l in &pressure_lines {
+        println!("{l}");
     }
     if let Some(p) = json_out {
         let doc = json!({"cases": rows});

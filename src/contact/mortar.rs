@@ -339,6 +339,47 @@ impl Mortar {
         out
     }
 
+    /// Whether slave corner node n touches the master: its own gap, measured along its
+    /// averaged normal, is below 1e-6 of the adjacent slave cell size. (The weighted gap of
+    /// a single touching point is positive, so it cannot start the active set.)
+    fn touching(&self, mesh: &Mesh, u: &[f64], n: usize) -> bool {
+        let Some(cells) = self.cells_of_node.get(&n) else {
+            return false; // a mid-side node: never the initial support
+        };
+        let x = Self::pos(mesh, u, n);
+        let nv = self.node_normal(mesh, u, n);
+        for &ic in cells {
+            let sn = mesh.cell_nodes(self.slave.cells[ic]);
+            let (a, b) = (mesh.coords[sn[0]], mesh.coords[sn[1]]);
+            let size = (a[0] - b[0]).hypot(a[1] - b[1]);
+            for &im in &self.candidates[ic] {
+                let mc = self.master.cells[im];
+                let xm: Vec<[f64; 2]> = mesh
+                    .cell_nodes(mc)
+                    .iter()
+                    .map(|&m| Self::pos(mesh, u, m))
+                    .collect();
+                let mut xi = 0.0;
+                for _ in 0..30 {
+                    let (pm, tm) = point_and_tangent(mesh.kind(mc), &xm, xi);
+                    let step = cross([pm[0] - x[0], pm[1] - x[1]], nv) / cross(tm, nv);
+                    xi -= step;
+                    if step.abs() < 1e-13 {
+                        break;
+                    }
+                }
+                if xi.abs() <= 1.0 + 1e-9 {
+                    let (pm, _) = point_and_tangent(mesh.kind(mc), &xm, xi);
+                    let gap = (pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1];
+                    if gap <= 1e-6 * size {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
     fn measure(&self, p: [f64; 2]) -> f64 {
         if self.axisymmetric {
             2.0 * std::f64::consts::PI * p[0]
@@ -407,9 +448,9 @@ impl ContactPair for Mortar {
     fn initialise(&mut self, mesh: &Mesh) {
         // Nodes already touching (normalised gap within 1e-6 of the cell size) start active.
         let u = vec![0.0; 2 * mesh.num_nodes()];
-        let (g, d, facing) = self.gaps(mesh, &u);
+        let (_, _, facing) = self.gaps(mesh, &u);
         for k in 0..self.active.len() {
-            self.active[k] = facing[k] && g[k] / d[k] <= 1e-6 * d[k];
+            self.active[k] = facing[k] && self.touching(mesh, &u, self.mult_nodes[k]);
         }
         self.saved = self.active.clone();
     }
