@@ -23,6 +23,21 @@ fn run(file: &str, dy_ref: f64, siyy_ref: f64) {
         (siyy / siyy_ref - 1.0).abs() < 0.01,
         "{file}: SIYY_B {siyy}"
     );
+    // Newton with contact converges quadratically once the statuses are settled: in the
+    // last step, the last pair of iterations above round-off shows order ≥ 1.8.
+    let last = out.report.steps.last().unwrap();
+    let r: Vec<f64> = last
+        .iterations
+        .iter()
+        .map(|i| i.relative_residual)
+        .collect();
+    let k = (0..r.len() - 1)
+        .rev()
+        .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-11 && last.iterations[k].status_changes == 0)
+        .expect("an asymptotic pair");
+    let order = r[k + 1].ln() / r[k].ln();
+    println!("{file}: last step residuals {r:?}, order {order:.2}");
+    assert!(order >= 1.8, "{file}: order {order}");
     // the contact carries the whole load: Σ of the block's support reactions = 17 500 N
     let ry: f64 = mesh
         .node_group("Encast")
