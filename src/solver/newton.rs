@@ -56,7 +56,7 @@ impl Default for NewtonSettings {
             steps: 1,
             tolerance: 1e-6,
             max_iterations: 25,
-            max_cuts: 5,
+            max_cuts: 8,
             verbose: false,
         }
     }
@@ -166,8 +166,12 @@ pub fn solve(
                 *v = -*v;
             }
             let t = std::time::Instant::now();
-            lin.solve(&mut r)?;
+            let solved = lin.solve(&mut r);
             report.time_solve_s += t.elapsed().as_secs_f64();
+            if let Err(e) = solved {
+                failure = Some(e.to_string());
+                break;
+            }
             // A (numerically) singular matrix may factorise with tiny pivots: an increment
             // a million times the model size means a body is free to move.
             let step_size = r[..lin.n_primal.min(n)]
