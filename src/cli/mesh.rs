@@ -6,7 +6,13 @@ use serde_json::json;
 use std::path::Path;
 
 pub fn info(path: &Path, as_json: bool) -> Result<i32> {
-    let mesh = crate::mesh::read(path)?;
+    // A case file shows the mesh of its [mesh] table (a file or a built-in generator).
+    let mesh = if path.extension().is_some_and(|e| e == "toml") {
+        let (case, dir) = crate::case::load(path)?;
+        crate::case::build_mesh(&case.mesh, &dir)?
+    } else {
+        crate::mesh::read(path)?
+    };
     let counts = mesh.kind_counts();
     let (lo, hi) = bounding_box(&mesh);
     let q = quality(&mesh);

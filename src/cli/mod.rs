@@ -60,7 +60,8 @@ enum Command {
 
 #[derive(Subcommand)]
 enum MeshCommand {
-    /// Counts per cell kind, groups, bounding box, orientation fixes and quality.
+    /// Counts per cell kind, groups, bounding box, orientation fixes and quality
+    /// (FILE: a .msh mesh, or a .toml case whose [mesh] is shown).
     Info {
         file: PathBuf,
         #[arg(long)]
