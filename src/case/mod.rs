@@ -260,8 +260,10 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
 /// What a run produces.
 pub struct Outcome {
     pub report: NewtonReport,
-    /// Per contact pair: (slave node, pressure −λ) from the multipliers.
+    /// Per contact pair: (slave node, pressure) from the multipliers.
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    /// Per contact pair: (slave, master) surfaces.
+    pub contact_surfaces: Vec<(Surface, Surface)>,
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     /// Nodal stresses averaged over all cells sharing a node.
@@ -448,9 +450,10 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         verbose,
         ..Default::default()
     };
-    let (report, contact_pressure) = if case.contact.is_empty() {
+    let (report, contact_pressure, contact_surfaces) = if case.contact.is_empty() {
         (
             newton::solve(&mut problem, &settings, Method::Cholesky)?,
+            vec![],
             vec![],
         )
     } else {
@@ -470,8 +473,16 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
             .zip(&cp.mult_base)
             .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
             .collect();
+        let surfaces = cp
+            .pairs
+            .iter()
+            .map(|p| {
+                let (s, m) = p.surfaces();
+                (s.clone(), m.clone())
+            })
+            .collect();
         problem = cp.solid;
-        (report, pressures)
+        (report, pressures, surfaces)
     };
     let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
     let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
@@ -482,6 +493,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     Ok(Outcome {
         report,
         contact_pressure,
+        contact_surfaces,
         reactions: problem.reactions(),
         u: problem.u.clone(),
         stress,

@@ -4,6 +4,7 @@ use crate::case;
 use crate::error::{write_atomic, Result};
 use crate::fem::material::von_mises;
 use crate::mesh::Mesh;
+use crate::post::contact_pressure::{half_width, surface_tractions};
 use crate::post::plot;
 use crate::post::vtu::{self, Field};
 use serde_json::json;
@@ -109,6 +110,46 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         write_atomic(&f, svg.as_bytes())?;
         files.push(f.display().to_string());
     }
+    // Tractions recovered from the nodal stresses on both surfaces, and per-pair figures.
+    let mut contact_json = vec![];
+    for (i, (slave, master)) in outcome.contact_surfaces.iter().enumerate() {
+        let stem = if n_pairs == 1 {
+            "tractions".to_string()
+        } else {
+            format!("tractions_{}", i + 1)
+        };
+        let mut text = String::from(
+            "surface,node,x,y,pressure_initial,shear_initial,pressure_deformed,shear_deformed\n",
+        );
+        for (name, surf) in [("slave", slave), ("master", master)] {
+            let init = surface_tractions(&mesh, surf, &outcome.stress, None);
+            let def = surface_tractions(&mesh, surf, &outcome.stress, Some(&outcome.u));
+            let mut rows: Vec<_> = init.iter().zip(&def).collect();
+            rows.sort_by(|a, b| mesh.coords[a.0 .0][0].total_cmp(&mesh.coords[b.0 .0][0]));
+            for (&(n, p, t), &(_, pd, td)) in rows {
+                let x = mesh.coords[n];
+                text.push_str(&format!(
+                    "{name},{},{},{},{p},{t},{pd},{td}\n",
+                    n + 1,
+                    x[0],
+                    x[1]
+                ));
+            }
+        }
+        let f = out_dir.join(format!("{stem}.csv"));
+        write_atomic(&f, text.as_bytes())?;
+        files.push(f.display().to_string());
+        let samples: Vec<(f64, f64)> = outcome.contact_pressure[i]
+            .iter()
+            .map(|&(n, p)| (mesh.coords[n][0].abs(), p))
+            .collect();
+        let peak = samples.iter().fold(0.0f64, |m, p| m.max(p.1));
+        contact_json.push(json!({
+            "slave": slave.group, "master": master.group,
+            "peak_pressure": peak,
+            "half_width": half_width(&samples),
+        }));
+    }
     let wall = t0.elapsed().as_secs_f64();
     let mut probes = serde_json::Map::new();
     for (name, v) in &outcome.probes {
@@ -132,6 +173,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         "modelisation": case.model.modelisation.name(),
         "probes": probes,
         "reactions": reactions,
+        "contact": contact_json,
         "solver": outcome.report,
         "files": files,
         "wall_s": wall,

@@ -605,6 +605,10 @@ impl ContactPair for Mortar {
         self.active = self.saved.clone();
     }
 
+    fn surfaces(&self) -> (&Surface, &Surface) {
+        (&self.slave, &self.master)
+    }
+
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
         self.mult_nodes
             .iter()

@@ -1,5 +1,6 @@
 //! The interface every contact formulation offers to `ContactProblem`.
 
+use super::surface::Surface;
 use crate::assembly::coupled::Triplets;
 use crate::mesh::Mesh;
 
@@ -24,6 +25,8 @@ pub trait ContactPair {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
     fn commit(&mut self);
     fn restore(&mut self);
+    /// The slave and master surfaces.
+    fn surfaces(&self) -> (&Surface, &Surface);
     /// (slave node, contact pressure) from the multipliers.
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)>;
 }

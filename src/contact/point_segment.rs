@@ -618,6 +618,9 @@ impl super::pair::ContactPair for PointToSegment {
     fn restore(&mut self) {
         self.restore()
     }
+    fn surfaces(&self) -> (&Surface, &Surface) {
+        (&self.slave, &self.master)
+    }
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
         self.nodal_pressures(lam)
     }

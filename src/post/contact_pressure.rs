@@ -1,0 +1,127 @@
+//! Contact tractions recovered from the stresses at the surface nodes (p = −n·σ·n,
+//! shear = t·σ·n), on the initial or the deformed geometry, and a half-width estimate from
+//! nodal pressures.
+
+use crate::contact::surface::Surface;
+use crate::mesh::Mesh;
+
+/// Unit outward normal at each node of a surface: mean of the adjacent edges' normals
+/// (of the reference geometry, or of the deformed one when `u` is given).
+pub fn nodal_normals(mesh: &Mesh, surface: &Surface, u: Option<&[f64]>) -> Vec<(usize, [f64; 2])> {
+    let pos = |n: usize| match u {
+        Some(u) => [
+            mesh.coords[n][0] + u[2 * n],
+            mesh.coords[n][1] + u[2 * n + 1],
+        ],
+        None => mesh.coords[n],
+    };
+    let mut acc: std::collections::BTreeMap<usize, [f64; 2]> = Default::default();
+    for (i, &c) in surface.cells.iter().enumerate() {
+        let nodes = mesh.cell_nodes(c);
+        let (a, b) = (pos(nodes[0]), pos(nodes[1]));
+        let t = [b[0] - a[0], b[1] - a[1]];
+        let l = t[0].hypot(t[1]);
+        let n = if surface.ccw[i] {
+            [t[1] / l, -t[0] / l]
+        } else {
+            [-t[1] / l, t[0] / l]
+        };
+        for &node in nodes {
+            let e = acc.entry(node).or_insert([0.0; 2]);
+            e[0] += n[0];
+            e[1] += n[1];
+        }
+    }
+    acc.into_iter()
+        .map(|(node, v)| {
+            let l = v[0].hypot(v[1]);
+            (node, [v[0] / l, v[1] / l])
+        })
+        .collect()
+}
+
+/// (node, pressure −n·σ·n, shear t·σ·n with t = n turned by +90°) at the surface nodes.
+pub fn surface_tractions(
+    mesh: &Mesh,
+    surface: &Surface,
+    stress: &[[f64; 4]],
+    u: Option<&[f64]>,
+) -> Vec<(usize, f64, f64)> {
+    nodal_normals(mesh, surface, u)
+        .into_iter()
+        .map(|(node, n)| {
+            let s = stress[node];
+            let sn = [s[0] * n[0] + s[3] * n[1], s[3] * n[0] + s[1] * n[1]];
+            let t = [-n[1], n[0]];
+            (
+                node,
+                -(n[0] * sn[0] + n[1] * sn[1]),
+                t[0] * sn[0] + t[1] * sn[1],
+            )
+        })
+        .collect()
+}
+
+/// Contact half-width from nodal pressures along a coordinate x ≥ 0 (the pressure vanishing
+/// beyond it): an elliptical (Hertz-shaped) fit p² = A − B x² through the last two loaded
+/// nodes, or the last loaded node's x when that fit is not defined.
+pub fn half_width(samples: &[(f64, f64)]) -> Option<f64> {
+    let mut s: Vec<(f64, f64)> = samples.to_vec();
+    s.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let pmax = s.iter().fold(0.0f64, |m, p| m.max(p.1));
+    // multipliers of open nodes are zero up to round-off: "loaded" is above 1e-3 of the peak
+    let loaded: Vec<(f64, f64)> = s.into_iter().filter(|p| p.1 > 1e-3 * pmax).collect();
+    let (&(x1, p1), &(x2, p2)) = (loaded.get(loaded.len().checked_sub(2)?)?, loaded.last()?);
+    let b = (p1 * p1 - p2 * p2) / (x2 * x2 - x1 * x1);
+    let a = p1 * p1 + b * x1 * x1;
+    if b > 0.0 && a > 0.0 && (a / b).sqrt() >= x2 {
+        Some((a / b).sqrt())
+    } else {
+        Some(x2)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_width_of_sampled_hertz_profile_is_exact() {
+        let (a, p0) = (6.2146, 3585.36);
+        let s: Vec<(f64, f64)> = (0..12)
+            .map(|i| {
+                let x = 0.6 * i as f64;
+                (
+                    x,
+                    if x < a {
+                        p0 * (1.0 - (x / a).powi(2)).sqrt()
+                    } else {
+                        0.0
+                    },
+                )
+            })
+            .collect();
+        assert!((half_width(&s).unwrap() - a).abs() < 1e-9);
+    }
+
+    #[test]
+    fn uniform_stress_gives_its_normal_traction() {
+        // a unit square's top edge, σ_yy = -10, σ_xy = 3
+        let m = crate::mesh::generate::rectangle(
+            [0.0, 0.0],
+            1.0,
+            1.0,
+            2,
+            2,
+            crate::mesh::CellKind::Quad4,
+            0.0,
+        )
+        .unwrap();
+        let top = Surface::from_group(&m, "Top", "test").unwrap();
+        let stress = vec![[0.0, -10.0, 0.0, 3.0]; m.num_nodes()];
+        for (_, p, t) in surface_tractions(&m, &top, &stress, None) {
+            assert!((p - 10.0).abs() < 1e-12);
+            assert!((t.abs() - 3.0).abs() < 1e-12);
+        }
+    }
+}
