@@ -264,6 +264,8 @@ pub struct Outcome {
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
     /// Per contact pair: (slave, master) surfaces.
     pub contact_surfaces: Vec<(Surface, Surface)>,
+    /// Per contact pair: (slave node, tangential traction) with friction, and μ.
+    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     /// Nodal stresses averaged over all cells sharing a node.
@@ -378,8 +380,25 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 c.rho
             )));
         }
+        if c.friction.is_nan() || c.friction < 0.0 {
+            return Err(Error::model(format!(
+                "{what}: friction must be 0 or positive, got {}",
+                c.friction
+            )));
+        }
+        if c.rho_f.is_nan() || c.rho_f <= 0.0 {
+            return Err(Error::model(format!(
+                "{what}: rho_f must be positive, got {}",
+                c.rho_f
+            )));
+        }
         match c.formulation.as_str() {
             "point-to-segment" => {}
+            "mortar" if c.friction > 0.0 => {
+                return Err(Error::model(format!(
+                    "{what}: friction is not available with the mortar formulation yet; use point-to-segment"
+                )))
+            }
             "mortar" => {
                 // complementarity parameter: stiffest-scale E over the shortest slave cell
                 let e_min = case
@@ -413,10 +432,20 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 )))
             }
         }
+        let mut friction_excluded = vec![];
+        for g in &c.friction_exclude {
+            friction_excluded.extend(
+                mesh.node_group(g)
+                    .map_err(|e| Error::model(format!("{what}: friction_exclude: {e}")))?,
+            );
+        }
         let opts = point_segment::Options {
             integration,
             rho: c.rho,
             initial,
+            friction: (c.friction > 0.0).then_some(c.friction),
+            rho_f: c.rho_f,
+            friction_excluded,
             ..Default::default()
         };
         pairs.push(Box::new(PointToSegment::new(
@@ -450,18 +479,23 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         verbose,
         ..Default::default()
     };
-    let (report, contact_pressure, contact_surfaces) = if case.contact.is_empty() {
+    let (report, contact_pressure, contact_surfaces, contact_shear) = if case.contact.is_empty() {
         (
             newton::solve(&mut problem, &settings, Method::Cholesky)?,
+            vec![],
             vec![],
             vec![],
         )
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        // The mortar tangent (finite-difference geometry terms) is not symmetric enough for
-        // the refined LDLT: it goes to LU.
-        let method = if case.contact.iter().any(|c| c.formulation == "mortar") {
+        // The mortar tangent (finite-difference geometry terms) and the friction tangent are
+        // not symmetric: they go to LU.
+        let method = if case
+            .contact
+            .iter()
+            .any(|c| c.formulation == "mortar" || c.friction > 0.0)
+        {
             Method::Lu
         } else {
             Method::SaddleLdlt
@@ -473,6 +507,17 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
             .zip(&cp.mult_base)
             .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
             .collect();
+        let shear: Vec<(f64, Vec<(usize, f64)>)> = cp
+            .pairs
+            .iter()
+            .zip(&cp.mult_base)
+            .map(|(p, &b)| {
+                (
+                    p.friction(),
+                    p.nodal_shear(&cp.lam[b..b + p.num_multipliers()]),
+                )
+            })
+            .collect();
         let surfaces = cp
             .pairs
             .iter()
@@ -482,7 +527,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
             })
             .collect();
         problem = cp.solid;
-        (report, pressures, surfaces)
+        (report, pressures, surfaces, shear)
     };
     let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
     let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
@@ -494,6 +539,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         report,
         contact_pressure,
         contact_surfaces,
+        contact_shear,
         reactions: problem.reactions(),
         u: problem.u.clone(),
         stress,

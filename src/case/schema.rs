@@ -256,6 +256,15 @@ pub struct ContactSpec {
     /// Initial status: "all" points active, or the "closed" ones (gap <= 0).
     #[serde(default = "default_initial")]
     pub initial: String,
+    /// Coulomb friction coefficient (0: frictionless). point-to-segment only for now.
+    #[serde(default)]
+    pub friction: f64,
+    /// Friction augmentation coefficient (1 / length).
+    #[serde(default = "hundred")]
+    pub rho_f: f64,
+    /// Node groups excluded from friction only (e.g. a node on a symmetry axis).
+    #[serde(default)]
+    pub friction_exclude: Vec<String>,
 }
 
 fn default_formulation() -> String {

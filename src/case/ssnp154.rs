@@ -102,8 +102,8 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
     }
 }
 
-/// Modelisations that can run now (id, quadratic, formulation of the reference).
-pub const AVAILABLE: [&str; 2] = ["A", "B"];
+/// Modelisations that can run now.
+pub const AVAILABLE: [&str; 4] = ["A", "B", "C", "D"];
 
 /// The reference set-up of a modelisation: large kinematics, contact between the
 /// cylinder's arc (slave) and the block's top (master), 2 load steps, Newton tolerance
@@ -130,7 +130,19 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         gauss_points: 3,
         rho: 100.0,
         initial: "all".into(),
+        friction: 0.0,
+        rho_f: 100.0,
+        friction_exclude: vec![],
     });
+    if id == "C" || id == "D" {
+        // Coulomb 0.1, nodal integration (trapezoid / Simpson), initially touching points
+        // active (INTERPENETRE), C excluded from friction only (its slip is zero: DX = 0).
+        let k = c.contact.last_mut().unwrap();
+        k.friction = 0.1;
+        k.integration = "nodal".into();
+        k.initial = "closed".into();
+        k.friction_exclude = vec!["C".into()];
+    }
     c
 }
 

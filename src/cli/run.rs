@@ -47,13 +47,19 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             .map(|&(n, p)| (mesh.coords[n][0], n, p))
             .collect();
         rows.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let mut text = String::from("node,x,y,x_deformed,y_deformed,pressure,hertz\n");
+        let shear: std::collections::HashMap<usize, f64> = outcome
+            .contact_shear
+            .get(i)
+            .map(|s| s.1.iter().copied().collect())
+            .unwrap_or_default();
+        let mut text = String::from("node,x,y,x_deformed,y_deformed,pressure,shear,hertz\n");
         for &(x, n, p) in &rows {
             let y = mesh.coords[n][1];
             let (ux, uy) = (outcome.u[2 * n], outcome.u[2 * n + 1]);
             let hz = hertz(x).map_or(String::new(), |v| v.to_string());
+            let sh = shear.get(&n).map_or(String::new(), |v| v.to_string());
             text.push_str(&format!(
-                "{},{x},{y},{},{},{p},{hz}\n",
+                "{},{x},{y},{},{},{p},{sh},{hz}\n",
                 n + 1,
                 x + ux,
                 y + uy

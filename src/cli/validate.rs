@@ -25,7 +25,7 @@ pub fn validate(
         "SSNP154 (NAFEMS contact benchmark 1), {source}, tolerance {:.1} %",
         tolerance * 100.0
     );
-    println!("Modelisations C-F (friction, node-to-segment) are not implemented yet.\n");
+    println!("Modelisations E and F (node-to-segment) are not implemented yet.\n");
     println!(
         "{:<3} {:<17} {:<8} {:>14} {:>14} {:>9} {:>7} {:>5} {:>6} {:>7}",
         "id",
@@ -43,6 +43,9 @@ pub fn validate(
     let mut pressure_lines = vec![];
     let mut all_pass = true;
     for id in ssnp154::AVAILABLE {
+        if formulation == Some("mortar") && (id == "C" || id == "D") {
+            continue; // friction is not available with mortar yet
+        }
         let &(_, quadratic, dy_ref, siyy_ref) =
             ssnp154::REFERENCES.iter().find(|r| r.0 == id).unwrap();
         let file = if quadratic {

@@ -597,7 +597,7 @@ impl ContactPair for Mortar {
         changes
     }
 
-    fn commit(&mut self) {
+    fn commit(&mut self, _u: &[f64]) {
         self.saved = self.active.clone();
     }
 

@@ -23,10 +23,20 @@ pub trait ContactPair {
     );
     /// Updates statuses (and pairing) from the iterate; returns how many changed.
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
-    fn commit(&mut self);
+    /// The load step converged at displacement u.
+    fn commit(&mut self, u: &[f64]);
     fn restore(&mut self);
     /// The slave and master surfaces.
     fn surfaces(&self) -> (&Surface, &Surface);
     /// (slave node, contact pressure) from the multipliers.
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)>;
+    /// (slave node, tangential traction along the master tangent) from the multipliers;
+    /// empty without friction.
+    fn nodal_shear(&self, _lam: &[f64]) -> Vec<(usize, f64)> {
+        vec![]
+    }
+    /// Coulomb coefficient of the pair (0 without friction).
+    fn friction(&self) -> f64 {
+        0.0
+    }
 }

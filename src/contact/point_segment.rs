@@ -44,6 +44,12 @@ pub struct Options {
     pub initial: InitialStatus,
     /// Parametric overshoot beyond which a projection is rejected (TOLE_PROJ_EXT, 0.5).
     pub projection_tolerance: f64,
+    /// Coulomb friction coefficient (None: frictionless).
+    pub friction: Option<f64>,
+    /// Friction augmentation ρ_f (the reference's COEF_FROT, 100, per unit length).
+    pub rho_f: f64,
+    /// Slave nodes excluded from friction only (the reference's SANS_GROUP_NO_FR).
+    pub friction_excluded: Vec<usize>,
 }
 
 impl Default for Options {
@@ -53,6 +59,9 @@ impl Default for Options {
             rho: 100.0,
             initial: InitialStatus::All,
             projection_tolerance: 0.5,
+            friction: None,
+            rho_f: 100.0,
+            friction_excluded: vec![],
         }
     }
 }
@@ -86,6 +95,19 @@ pub struct PointToSegment {
     /// any it has been paired with since. The matrix pattern covers all of them, so it only
     /// changes when a point pairs outside this set.
     candidates: Vec<Vec<usize>>,
+    /// Displacement at the start of the load step (slips are measured from it).
+    u_start: Vec<f64>,
+}
+
+/// What the friction term of one point needs from the normal one.
+struct FrictionPoint<'a> {
+    mu: f64,
+    w: f64,
+    lp: f64,
+    chi: bool,
+    e: &'a Eval,
+    snodes: &'a [usize],
+    mnodes: &'a [usize],
 }
 
 /// Geometry of one contact point at the current state.
@@ -169,11 +191,13 @@ impl PointToSegment {
             master_cells_of_node,
             saved_status: vec![false; n_points],
             candidates,
+            u_start: vec![0.0; 2 * mesh.num_nodes()],
         }
     }
 
+    /// Normal multipliers on the slave nodes, then (with friction) tangential ones.
     pub fn num_multipliers(&self) -> usize {
-        self.mult_nodes.len()
+        self.mult_nodes.len() * if self.opts.friction.is_some() { 2 } else { 1 }
     }
 
     pub fn num_active(&self) -> usize {
@@ -481,6 +505,28 @@ impl PointToSegment {
                     }
                 }
             }
+            if let Some(mu) = self.opts.friction {
+                let fp = FrictionPoint {
+                    mu,
+                    w,
+                    lp,
+                    chi,
+                    e: &e,
+                    snodes,
+                    mnodes,
+                };
+                self.friction_point(&fp, u, lam, ru, rl, k, ndof + mult_base);
+            }
+        }
+        if self.opts.friction.is_some() {
+            // excluded nodes: Λ = 0 by a unit row
+            let nm = self.mult_nodes.len();
+            for &n in &self.opts.friction_excluded {
+                if let Some(&m) = self.mult_of.get(&n) {
+                    rl[nm + m] += lam[nm + m];
+                    k.add(ndof + mult_base + nm + m, ndof + mult_base + nm + m, 1.0);
+                }
+            }
         }
         // The pattern: explicit zeros over every coupling a slave cell may have, so that
         // status and pairing changes within the candidates keep the pattern (and the
@@ -497,11 +543,16 @@ impl PointToSegment {
             }
             dofs.sort_unstable();
             dofs.dedup();
-            let mults: Vec<usize> = mesh
+            let nm = self.mult_nodes.len();
+            let mut mults: Vec<usize> = mesh
                 .cell_nodes(sc)
                 .iter()
                 .map(|n| ndof + mult_base + self.mult_of[n])
                 .collect();
+            if self.opts.friction.is_some() {
+                let friction: Vec<usize> = mults.iter().map(|m| m + nm).collect();
+                mults.extend(friction);
+            }
             for &r in &dofs {
                 for &cc in &dofs {
                     k.add(r, cc, 0.0);
@@ -536,8 +587,9 @@ impl PointToSegment {
         changes
     }
 
-    pub fn commit(&mut self) {
+    pub fn commit(&mut self, u: &[f64]) {
         self.saved_status = self.points.iter().map(|p| p.active).collect();
+        self.u_start.copy_from_slice(u);
     }
 
     pub fn restore(&mut self) {
@@ -553,6 +605,115 @@ impl PointToSegment {
             .enumerate()
             .map(|(k, &n)| (n, -lam[k]))
             .collect()
+    }
+
+    /// Coulomb friction at one contact point (contact.md §1.8): with the semi-multiplier
+    /// Λ (|Λ| ≤ 1) and the slip Δw since the start of the step along the master tangent,
+    /// t = Λ + ρ_f Δw; stick if |t| ≤ 1 (then Δw = 0 weakly), slip otherwise (Λ = ±1);
+    /// the tangential traction is μ|λ||Λ|. No contact (or λ = 0): Λ = 0.
+    #[allow(clippy::too_many_arguments)]
+    fn friction_point(
+        &self,
+        fp: &FrictionPoint,
+        u: &[f64],
+        lam: &[f64],
+        ru: &mut [f64],
+        rl: &mut [f64],
+        k: &mut Triplets,
+        mbase: usize,
+    ) {
+        let nm = self.mult_nodes.len();
+        let e = fp.e;
+        let (w, mu, lp) = (fp.w, fp.mu, fp.lp);
+        let rho_f = self.opts.rho_f;
+        // T over dofs: slave N_s τ, master −N_m τ; Δw = Tᵀ (u − u_start)
+        let mut tv: Vec<(usize, f64)> = vec![];
+        let mut dw = 0.0;
+        for (a, &n) in fp.snodes.iter().enumerate() {
+            for c in 0..2 {
+                tv.push((2 * n + c, e.ns[a] * e.tau[c]));
+                dw += e.ns[a] * e.tau[c] * (u[2 * n + c] - self.u_start[2 * n + c]);
+            }
+        }
+        for (b, &n) in fp.mnodes.iter().enumerate() {
+            for c in 0..2 {
+                tv.push((2 * n + c, -e.nm[b] * e.tau[c]));
+                dw -= e.nm[b] * e.tau[c] * (u[2 * n + c] - self.u_start[2 * n + c]);
+            }
+        }
+        let excluded = |n: usize| self.opts.friction_excluded.contains(&n);
+        // friction multipliers (index, N_s) of this cell; excluded nodes keep their unit row
+        let fm: Vec<(usize, f64)> = fp
+            .snodes
+            .iter()
+            .enumerate()
+            .filter(|(_, n)| !excluded(**n))
+            .map(|(a, n)| (nm + self.mult_of[n], e.ns[a]))
+            .collect();
+        let nmults: Vec<(usize, f64)> = fp
+            .snodes
+            .iter()
+            .enumerate()
+            .map(|(a, n)| (self.mult_of[n], e.ns[a]))
+            .collect();
+        let big_l: f64 = fp
+            .snodes
+            .iter()
+            .enumerate()
+            .map(|(a, n)| e.ns[a] * lam[nm + self.mult_of[n]])
+            .sum();
+        if !fp.chi || lp == 0.0 {
+            for &(m, nv) in &fm {
+                rl[m] += w * big_l * nv;
+                for &(m2, n2) in &fm {
+                    k.add(mbase + m, mbase + m2, w * nv * n2);
+                }
+            }
+            return;
+        }
+        let t = big_l + rho_f * dw;
+        if t.abs() <= 1.0 {
+            for &(d, v) in &tv {
+                ru[d] += -w * mu * lp * t * v;
+                for &(d2, v2) in &tv {
+                    k.add(d, d2, -w * mu * lp * rho_f * v * v2);
+                }
+                for &(m, nv) in &fm {
+                    k.add(d, mbase + m, -w * mu * lp * v * nv);
+                    k.add(mbase + m, d, -w * mu * lp * nv * v);
+                }
+                for &(m, nv) in &nmults {
+                    k.add(d, mbase + m, -w * mu * t * v * nv);
+                }
+            }
+            for &(m, nv) in &fm {
+                rl[m] += -w * mu * lp * dw * nv;
+                for &(m2, n2) in &nmults {
+                    k.add(mbase + m, mbase + m2, -w * mu * dw * nv * n2);
+                }
+            }
+        } else {
+            let sg = t.signum();
+            for &(d, v) in &tv {
+                ru[d] += -w * mu * lp * sg * v;
+                for &(m, nv) in &nmults {
+                    k.add(d, mbase + m, -w * mu * sg * v * nv);
+                }
+            }
+            for &(m, nv) in &fm {
+                rl[m] += w * mu * lp * (big_l - sg) / rho_f * nv;
+                for &(m2, n2) in &fm {
+                    k.add(mbase + m, mbase + m2, w * mu * lp / rho_f * nv * n2);
+                }
+                for &(m2, n2) in &nmults {
+                    k.add(
+                        mbase + m,
+                        mbase + m2,
+                        w * mu * (big_l - sg) / rho_f * nv * n2,
+                    );
+                }
+            }
+        }
     }
 }
 
@@ -612,8 +773,8 @@ impl super::pair::ContactPair for PointToSegment {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         self.update_status(mesh, u, lam)
     }
-    fn commit(&mut self) {
-        self.commit()
+    fn commit(&mut self, u: &[f64]) {
+        self.commit(u)
     }
     fn restore(&mut self) {
         self.restore()
@@ -623,5 +784,20 @@ impl super::pair::ContactPair for PointToSegment {
     }
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
         self.nodal_pressures(lam)
+    }
+    fn nodal_shear(&self, lam: &[f64]) -> Vec<(usize, f64)> {
+        // traction μ λ Λ (λ < 0 in compression): its magnitude is μ p |Λ| ≤ μ p
+        let Some(mu) = self.opts.friction else {
+            return vec![];
+        };
+        let nm = self.mult_nodes.len();
+        self.mult_nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, mu * lam[k] * lam[nm + k]))
+            .collect()
+    }
+    fn friction(&self) -> f64 {
+        self.opts.friction.unwrap_or(0.0)
     }
 }

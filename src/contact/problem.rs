@@ -126,7 +126,7 @@ impl Nonlinear for ContactProblem<'_> {
 
     fn commit_step(&mut self) {
         for p in &mut self.pairs {
-            p.commit();
+            p.commit(&self.solid.u);
         }
         self.saved_lam.clone_from(&self.lam);
     }
