@@ -144,3 +144,46 @@ fn missing_mesh_file_names_it() {
     assert!(e.contains("nowhere.msh"), "{e}");
     assert!(e.contains("No such file"), "{e}");
 }
+
+#[test]
+fn bad_contact_entries_are_rejected() {
+    let two = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Top\"\nmaster = \"Top\"\n[[force]]",
+    );
+    let e = error_of("same.toml", &two);
+    assert_eq!(
+        e,
+        "[[contact]] 1 (Top on Top): slave and master must be different groups"
+    );
+    let neg = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nfriction = -0.1\n[[force]]",
+    );
+    let e = error_of("mu.toml", &neg);
+    assert_eq!(
+        e,
+        "[[contact]] 1 (Top on Bottom): friction must be 0 or positive, got -0.1"
+    );
+    let missing = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Arc\"\nmaster = \"Bottom\"\n[[force]]",
+    );
+    let e = error_of("arc.toml", &missing);
+    assert!(e.starts_with("[[contact]] 1 (Arc on Bottom): slave surface: group 'Arc' is not in the mesh; groups are: Body"), "{e}");
+    let mortar = GOOD.replace("[[force]]", "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nformulation = \"mortar\"\nfriction = 0.2\n[[force]]");
+    let e = error_of("mf.toml", &mortar);
+    assert!(
+        e.contains("friction is not available with the mortar formulation yet"),
+        "{e}"
+    );
+    let point = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"TopLeft\"\nmaster = \"Bottom\"\n[[force]]",
+    );
+    let e = error_of("pt.toml", &point);
+    assert!(
+        e.contains("holds a Point1 cell; contact surfaces are groups of Seg2/Seg3 edges"),
+        "{e}"
+    );
+}

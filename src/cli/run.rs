@@ -150,10 +150,25 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             .map(|&(n, p)| (mesh.coords[n][0].abs(), p))
             .collect();
         let peak = samples.iter().fold(0.0f64, |m, p| m.max(p.1));
+        // stick zone: loaded slave nodes whose shear is below μ p (|Λ| < 1)
+        let stick_extent = outcome
+            .contact_shear
+            .get(i)
+            .filter(|s| !s.1.is_empty())
+            .map(|(mu, shear)| {
+                let p: std::collections::HashMap<usize, f64> =
+                    outcome.contact_pressure[i].iter().copied().collect();
+                shear
+                    .iter()
+                    .filter(|&&(n, t)| p[&n] > 1e-3 * peak && t.abs() < mu * p[&n] * (1.0 - 1e-4))
+                    .map(|&(n, _)| mesh.coords[n][0].abs())
+                    .fold(0.0f64, f64::max)
+            });
         contact_json.push(json!({
             "slave": slave.group, "master": master.group,
             "peak_pressure": peak,
             "half_width": half_width(&samples),
+            "stick_zone_extent": stick_extent,
         }));
     }
     let wall = t0.elapsed().as_secs_f64();
