@@ -4,11 +4,13 @@
 //! |---|---|
 //! | `surface.rs` | contact surfaces from edge groups: connected chains with outward sides |
 //! | `projection.rs` | closest-point projection on Seg2/Seg3 segments |
+//! | `friction.rs` | Coulomb's law as a pure return map (semi-multiplier form) |
 //! | `pair.rs` | the `ContactPair` interface of the formulations |
 //! | `mortar.rs` | dual mortar, nodal weighted gaps and active set (our default) |
 //! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
 //! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 
+pub mod friction;
 pub mod mortar;
 pub mod pair;
 pub mod point_segment;

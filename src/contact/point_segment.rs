@@ -11,6 +11,7 @@
 //!   inactive:                           r_λ += −ω (λ/ρ) N_s
 //! with B = [N_s n ; −N_m n]. The tangent freezes pairing and normal.
 
+use super::friction;
 use super::projection::{point_and_tangent, project};
 use super::surface::Surface;
 use crate::assembly::coupled::Triplets;
@@ -102,6 +103,8 @@ pub struct PointToSegment {
 /// What the friction term of one point needs from the normal one.
 struct FrictionPoint<'a> {
     mu: f64,
+    /// |λ| below which a point carries no friction (1e-8 of the largest |λ|)
+    lambda_floor: f64,
     w: f64,
     lp: f64,
     chi: bool,
@@ -399,6 +402,8 @@ impl PointToSegment {
     ) {
         let ndof = 2 * mesh.num_nodes();
         let rho = self.opts.rho;
+        let nmult = self.mult_nodes.len();
+        let lambda_floor = 1e-8 * lam[..nmult].iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for i in 0..self.points.len() {
             let p = &self.points[i];
             let e = self.eval(mesh, u, i);
@@ -507,6 +512,7 @@ impl PointToSegment {
             }
             if let Some(mu) = self.opts.friction {
                 let fp = FrictionPoint {
+                    lambda_floor,
                     mu,
                     w,
                     lp,
@@ -662,7 +668,10 @@ impl PointToSegment {
             .enumerate()
             .map(|(a, n)| e.ns[a] * lam[nm + self.mult_of[n]])
             .sum();
-        if !fp.chi || lp == 0.0 {
+        // Friction needs a pressure: a point with (numerically) no normal multiplier gets the
+        // "no contact" row, as an exactly zero λ does in the reference, so that the slip row
+        // μ λ (Λ − sign t) / ρ_f never degenerates.
+        if !fp.chi || lp > -fp.lambda_floor {
             for &(m, nv) in &fm {
                 rl[m] += w * big_l * nv;
                 for &(m2, n2) in &fm {
@@ -671,10 +680,11 @@ impl PointToSegment {
             }
             return;
         }
-        let t = big_l + rho_f * dw;
-        if t.abs() <= 1.0 {
+        let (t, law) = friction::state(big_l, dw, rho_f);
+        if law == friction::State::Stick {
+            let q = friction::traction(mu, lp, t, law); // μ λ t
             for &(d, v) in &tv {
-                ru[d] += -w * mu * lp * t * v;
+                ru[d] += -w * q * v;
                 for &(d2, v2) in &tv {
                     k.add(d, d2, -w * mu * lp * rho_f * v * v2);
                 }
@@ -694,8 +704,9 @@ impl PointToSegment {
             }
         } else {
             let sg = t.signum();
+            let q = friction::traction(mu, lp, t, law); // μ λ sign(t)
             for &(d, v) in &tv {
-                ru[d] += -w * mu * lp * sg * v;
+                ru[d] += -w * q * v;
                 for &(m, nv) in &nmults {
                     k.add(d, mbase + m, -w * mu * sg * v * nv);
                 }

@@ -1,0 +1,74 @@
+//! Coulomb's law as a pure function on one contact point (contact.md §1.8), in the
+//! reference code's semi-multiplier form: Λ is the tangential traction divided by μ|λ|
+//! (so |Λ| ≤ 1), Δw the slip along the master tangent since the start of the load step,
+//! and t = Λ + ρ_f Δw the augmented trial value. |t| ≤ 1 sticks, otherwise the point slips
+//! with Λ = sign(t): a return map onto the Coulomb cone.
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum State {
+    Stick,
+    /// slipping in the direction of this sign of the tangent
+    Slip(f64),
+}
+
+/// The augmented value t and the state it decides.
+pub fn state(semi_multiplier: f64, slip: f64, rho_f: f64) -> (f64, State) {
+    let t = semi_multiplier + rho_f * slip;
+    if t.abs() <= 1.0 {
+        (t, State::Stick)
+    } else {
+        (t, State::Slip(t.signum()))
+    }
+}
+
+/// Tangential force per unit area on the slave side along the master tangent, for the
+/// normal multiplier λ (< 0 in compression): μ λ t when sticking, μ λ sign(t) when slipping.
+/// It opposes the trial slip and never exceeds μ|λ| in magnitude.
+pub fn traction(mu: f64, lambda: f64, t: f64, state: State) -> f64 {
+    match state {
+        State::Stick => mu * lambda * t,
+        State::Slip(s) => mu * lambda * s,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn stick_inside_the_cone_and_slip_outside() {
+        assert_eq!(state(0.2, 0.001, 100.0).1, State::Stick); // t = 0.3
+        assert_eq!(state(0.5, 0.01, 100.0).1, State::Slip(1.0)); // t = 1.5
+        assert_eq!(state(-0.5, -0.01, 100.0).1, State::Slip(-1.0));
+        assert_eq!(state(1.0, 0.0, 100.0).1, State::Stick); // on the cone: stick
+    }
+
+    #[test]
+    fn traction_never_exceeds_the_cone_and_opposes_the_slip() {
+        let (mu, lambda) = (0.1, -2000.0); // compression
+        let mut seed: u64 = 12345;
+        for _ in 0..10_000 {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let l = (seed % 2001) as f64 / 1000.0 - 1.0;
+            let dw = ((seed >> 20) % 2001) as f64 / 1e5 - 0.01;
+            let (t, st) = state(l, dw, 100.0);
+            let q = traction(mu, lambda, t, st);
+            assert!(q.abs() <= mu * lambda.abs() * (1.0 + 1e-15));
+            if let State::Slip(s) = st {
+                assert_eq!(q.abs(), mu * lambda.abs());
+                // a positive trial slip (s > 0) gets a negative force on the slave
+                assert!(q * s < 0.0);
+            }
+        }
+    }
+
+    #[test]
+    fn traction_is_continuous_across_the_cone() {
+        let (mu, lambda) = (0.3, -10.0);
+        let inside = traction(mu, lambda, 1.0 - 1e-12, State::Stick);
+        let outside = traction(mu, lambda, 1.0 + 1e-12, State::Slip(1.0));
+        assert!((inside - outside).abs() < 1e-10);
+    }
+}
