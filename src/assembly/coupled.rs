@@ -28,6 +28,13 @@ pub struct CoupledMatrix {
     solid_map: Vec<usize>,
     /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
     key: Vec<(usize, usize)>,
+    /// The (row, col) sequence of the last triplets and, for each triplet, its targets
+    /// (`scatter[scatter_ptr[t]..scatter_ptr[t + 1]]`: value position, coefficient). Contact
+    /// terms emit the same sequence from one iteration to the next, so the expansion, sort
+    /// and searches run only when it changes.
+    last_triplets: Vec<(usize, usize)>,
+    scatter_ptr: Vec<usize>,
+    scatter: Vec<(usize, f64)>,
     /// Number of pattern rebuilds (for reports).
     pub rebuilds: usize,
 }
@@ -42,6 +49,33 @@ impl CoupledMatrix {
         n_extra: usize,
         extra: &Triplets,
     ) {
+        let n = dofs.num_free + n_extra;
+        let same = self.matrix.n == n
+            && self.solid_map.len() == solid.nnz()
+            && self.last_triplets.len() == extra.entries.len()
+            && extra
+                .entries
+                .iter()
+                .zip(&self.last_triplets)
+                .all(|(t, k)| t.0 == k.0 && t.1 == k.1);
+        if !same {
+            self.prepare(solid, dofs, n_extra, extra);
+        }
+        let m = &mut self.matrix;
+        m.values.fill(0.0);
+        for (p, &q) in self.solid_map.iter().enumerate() {
+            m.values[q] += solid.values[p];
+        }
+        for (t, &(_, _, v)) in extra.entries.iter().enumerate() {
+            for &(q, coef) in &self.scatter[self.scatter_ptr[t]..self.scatter_ptr[t + 1]] {
+                m.values[q] += coef * v;
+            }
+        }
+    }
+
+    /// Expands the triplets to unknowns, rebuilds the pattern if its set of entries changed,
+    /// and records where each triplet's value goes.
+    fn prepare(&mut self, solid: &SparseMatrix, dofs: &DofMap, n_extra: usize, extra: &Triplets) {
         let nf = dofs.num_free;
         let ndof = dofs.num_dofs();
         let n = nf + n_extra;
@@ -55,34 +89,38 @@ impl CoupledMatrix {
                 out.push((nf + id - ndof, 1.0));
             }
         };
-        let mut reduced: Vec<(usize, usize, f64)> = Vec::with_capacity(extra.entries.len());
-        for &(r, c, v) in &extra.entries {
+        // (column, row, coefficient) per target, grouped by triplet
+        let mut targets: Vec<(usize, usize, f64)> = Vec::with_capacity(extra.entries.len());
+        self.scatter_ptr.clear();
+        self.scatter_ptr.push(0);
+        for &(r, c, _) in &extra.entries {
             expand(r, &mut ex_r);
             expand(c, &mut ex_c);
             for &(i, ci) in &ex_r {
                 for &(j, cj) in &ex_c {
-                    reduced.push((j, i, ci * cj * v));
+                    targets.push((j, i, ci * cj));
                 }
             }
+            self.scatter_ptr.push(targets.len());
         }
-        reduced.sort_unstable_by_key(|t| (t.0, t.1));
-        let mut key: Vec<(usize, usize)> = reduced.iter().map(|t| (t.0, t.1)).collect();
+        let mut key: Vec<(usize, usize)> = targets.iter().map(|t| (t.0, t.1)).collect();
+        key.sort_unstable();
         key.dedup();
         if key != self.key || self.matrix.n != n || self.solid_map.len() != solid.nnz() {
             self.rebuild(solid, n, &key);
             self.key = key;
         }
-        let m = &mut self.matrix;
-        m.values.fill(0.0);
-        for (p, &q) in self.solid_map.iter().enumerate() {
-            m.values[q] += solid.values[p];
-        }
-        for &(col, row, v) in &reduced {
-            let q = m
-                .position(row, col)
-                .expect("pattern holds every contributed entry");
-            m.values[q] += v;
-        }
+        let m = &self.matrix;
+        self.scatter = targets
+            .iter()
+            .map(|&(col, row, coef)| {
+                let q = m
+                    .position(row, col)
+                    .expect("pattern holds every contributed entry");
+                (q, coef)
+            })
+            .collect();
+        self.last_triplets = extra.entries.iter().map(|t| (t.0, t.1)).collect();
     }
 
     fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {

@@ -38,6 +38,10 @@ pub struct Assembler {
     scatter: Vec<u32>,
     /// Only the lower triangle is stored (enough for Cholesky; halves the memory).
     pub lower_only: bool,
+    /// Element vectors and matrices of one block of cells, kept between assemblies (a
+    /// fresh 4 MB buffer per call costs more in page faults than the kernels).
+    fbuf: Vec<f64>,
+    kbuf: Vec<f64>,
 }
 
 impl Assembler {
@@ -135,6 +139,8 @@ impl Assembler {
             scatter_start,
             scatter,
             lower_only,
+            fbuf: vec![],
+            kbuf: vec![],
         })
     }
 
@@ -151,16 +157,17 @@ impl Assembler {
         if with_matrix {
             self.matrix.values.fill(0.0);
         }
-        let mut fbuf = vec![0.0; BLOCK * MAX_DOFS];
-        let mut kbuf = if with_matrix {
-            vec![0.0; BLOCK * MAX_DOFS * MAX_DOFS]
-        } else {
-            vec![]
-        };
+        let block = BLOCK.min(self.cells.len()).max(1);
+        let mut fbuf = std::mem::take(&mut self.fbuf);
+        let mut kbuf = std::mem::take(&mut self.kbuf);
+        fbuf.resize(block * MAX_DOFS, 0.0);
+        if with_matrix {
+            kbuf.resize(block * MAX_DOFS * MAX_DOFS, 0.0);
+        }
         let mut tmp_a = vec![];
         let mut tmp_b = vec![];
-        for start in (0..self.cells.len()).step_by(BLOCK) {
-            let end = (start + BLOCK).min(self.cells.len());
+        for start in (0..self.cells.len()).step_by(block) {
+            let end = (start + block).min(self.cells.len());
             let cells = &self.cells[start..end];
             let models = &self.cell_model[start..end];
             let compute = |i: usize,
@@ -234,6 +241,8 @@ impl Assembler {
                 }
             }
         }
+        self.fbuf = fbuf;
+        self.kbuf = kbuf;
         Ok(())
     }
 }
