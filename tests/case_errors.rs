@@ -171,6 +171,16 @@ fn bad_contact_entries_are_rejected() {
     );
     let e = error_of("arc.toml", &missing);
     assert!(e.starts_with("[[contact]] 1 (Arc on Bottom): slave surface: group 'Arc' is not in the mesh; groups are: Body"), "{e}");
+    let gap = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\ninitial_gap = 0.1\n[[force]]",
+    );
+    let e = error_of("gap.toml", &gap);
+    assert_eq!(
+        e,
+        "[[contact]] 1 (Top on Bottom): initial_gap must be 0 or positive and goes with initial = \"closed\", \
+         got 0.1 with initial = \"all\""
+    );
     let mortar = GOOD.replace("[[force]]", "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nformulation = \"mortar\"\nfriction = 0.2\n[[force]]");
     let e = error_of("mf.toml", &mortar);
     assert!(

@@ -103,23 +103,38 @@ impl CoupledMatrix {
             }
             self.scatter_ptr.push(targets.len());
         }
-        let mut key: Vec<(usize, usize)> = targets.iter().map(|t| (t.0, t.1)).collect();
-        key.sort_unstable();
-        key.dedup();
-        if key != self.key || self.matrix.n != n || self.solid_map.len() != solid.nnz() {
-            self.rebuild(solid, n, &key);
-            self.key = key;
+        // Status changes usually keep every target inside the current pattern (it holds the
+        // explicit zeros of all candidate couplings): then no sort and no rebuild.
+        let fits = self.matrix.n == n && self.solid_map.len() == solid.nnz();
+        let mut scatter = Vec::with_capacity(targets.len());
+        if fits {
+            for &(col, row, coef) in &targets {
+                match self.matrix.position(row, col) {
+                    Some(q) => scatter.push((q, coef)),
+                    None => break,
+                }
+            }
         }
-        let m = &self.matrix;
-        self.scatter = targets
-            .iter()
-            .map(|&(col, row, coef)| {
-                let q = m
-                    .position(row, col)
-                    .expect("pattern holds every contributed entry");
-                (q, coef)
-            })
-            .collect();
+        if scatter.len() < targets.len() {
+            let mut key: Vec<(usize, usize)> = targets.iter().map(|t| (t.0, t.1)).collect();
+            key.sort_unstable();
+            key.dedup();
+            if key != self.key || !fits {
+                self.rebuild(solid, n, &key);
+                self.key = key;
+            }
+            let m = &self.matrix;
+            scatter = targets
+                .iter()
+                .map(|&(col, row, coef)| {
+                    let q = m
+                        .position(row, col)
+                        .expect("pattern holds every contributed entry");
+                    (q, coef)
+                })
+                .collect();
+        }
+        self.scatter = scatter;
         self.last_triplets = extra.entries.iter().map(|t| (t.0, t.1)).collect();
     }
 

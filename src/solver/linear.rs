@@ -1,7 +1,7 @@
 //! Sparse direct solves with faer: Cholesky (LLᵀ) for symmetric positive definite systems,
 //! LDLᵀ with a constrained ordering for symmetric saddle-point systems (contact
 //! multipliers), LU otherwise. The symbolic factorisation is kept and reused while the
-//! pattern is unchanged (checked with a hash of the pattern).
+//! pattern is unchanged (compared with a copy of the last pattern).
 
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
@@ -20,7 +20,8 @@ pub enum Method {
 
 pub struct LinearSolver {
     pub method: Method,
-    pattern: Option<u64>,
+    /// The pattern of the last factorised matrix (column pointers, row indices), if valid.
+    pattern: Option<(Vec<usize>, Vec<usize>)>,
     /// For `SaddleLdlt`: number of leading primal (displacement) unknowns.
     pub n_primal: usize,
     ldlt: Option<SaddleLdlt>,
@@ -30,10 +31,9 @@ pub struct LinearSolver {
     lu: Option<Lu<usize, f64>>,
     /// Number of symbolic factorisations done (for reports and tests of reuse).
     pub symbolic_count: usize,
-    /// SaddleLdlt: the matrix itself (for refinement) and its symmetric part (factorised),
-    /// with the position of each entry's transpose.
+    /// SaddleLdlt: the matrix itself (for refinement), with the position of each entry's
+    /// transpose.
     exact: SparseMatrix,
-    sym: SparseMatrix,
     transpose: Vec<usize>,
     /// Refinement steps done in the last solve.
     pub refinement_steps: usize,
@@ -53,7 +53,6 @@ impl LinearSolver {
             lu: None,
             symbolic_count: 0,
             exact: SparseMatrix::default(),
-            sym: SparseMatrix::default(),
             transpose: vec![],
             refinement_steps: 0,
         }
@@ -61,12 +60,15 @@ impl LinearSolver {
 
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
-        let key = pattern_hash(a);
-        if self.pattern != Some(key) {
+        let unchanged = self
+            .pattern
+            .as_ref()
+            .is_some_and(|(c, r)| *c == a.col_ptr && *r == a.row_idx);
+        if !unchanged {
             self.sym_llt = None;
             self.sym_lu = None;
             self.ldlt = None;
-            self.pattern = Some(key);
+            self.pattern = Some((a.col_ptr.clone(), a.row_idx.clone()));
         }
         let mat = a.as_faer();
         match self.method {
@@ -91,7 +93,8 @@ impl LinearSolver {
             Method::SaddleLdlt => {
                 // Factorise the symmetric part; `solve` refines with the exact matrix, so a
                 // slightly non-symmetric tangent (contact geometry terms) is solved exactly.
-                if self.ldlt.is_none() {
+                let fresh = self.ldlt.is_none();
+                if fresh {
                     self.transpose = (0..a.n)
                         .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (p, c)))
                         .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap_or(usize::MAX))
@@ -101,25 +104,19 @@ impl LinearSolver {
                             "saddle-point LDLT needs a structurally symmetric matrix",
                         ));
                     }
-                    self.sym = a.clone();
+                    self.ldlt = Some(SaddleLdlt::new(a, self.n_primal)?);
+                    self.symbolic_count += 1;
                 }
-                self.exact.clone_from(a);
-                for p in 0..a.nnz() {
-                    self.sym.values[p] = 0.5 * (a.values[p] + a.values[self.transpose[p]]);
+                if !fresh && self.exact.nnz() == a.nnz() {
+                    self.exact.values.copy_from_slice(&a.values); // same pattern
+                } else {
+                    self.exact.clone_from(a);
                 }
-                let symbolic = match self.ldlt.take() {
-                    Some(f) => f.into_symbolic(),
-                    None => {
-                        self.symbolic_count += 1;
-                        SaddleLdlt::symbolic(&self.sym, self.n_primal)?
-                    }
-                };
-                match SaddleLdlt::numeric(symbolic, &self.sym) {
-                    Ok(f) => self.ldlt = Some(f),
-                    Err(e) => {
-                        self.pattern = None;
-                        return Err(e);
-                    }
+                let f = self.ldlt.as_mut().expect("analysed above");
+                if let Err(e) = f.factor(a, &self.transpose) {
+                    self.pattern = None;
+                    self.ldlt = None;
+                    return Err(e);
                 }
             }
             Method::Lu => {
@@ -169,7 +166,7 @@ impl LinearSolver {
     /// x = M⁻¹ b refined with the exact matrix A: x += M⁻¹ (b − A x) until the residual is
     /// at round-off level.
     fn solve_refined(&mut self, b: &mut [f64]) -> Result<()> {
-        let f = self.ldlt.as_ref().expect("factor before solve");
+        let f = self.ldlt.as_mut().expect("factor before solve");
         let rhs = b.to_vec();
         let scale = rhs
             .iter()
@@ -203,19 +200,6 @@ impl LinearSolver {
             self.refinement_steps += 1;
         }
     }
-}
-
-/// Hash of a sparsity pattern (FNV-1a over dimensions, column pointers and row indices).
-fn pattern_hash(a: &SparseMatrix) -> u64 {
-    let mut h: u64 = 0xcbf29ce484222325;
-    let mut mix = |v: usize| {
-        h ^= v as u64;
-        h = h.wrapping_mul(0x100000001b3);
-    };
-    mix(a.n);
-    a.col_ptr.iter().for_each(|&v| mix(v));
-    a.row_idx.iter().for_each(|&v| mix(v));
-    h
 }
 
 #[cfg(test)]
