@@ -138,25 +138,27 @@ impl CoupledMatrix {
         self.last_triplets = extra.entries.iter().map(|t| (t.0, t.1)).collect();
     }
 
+    /// The pattern: the solid's, the contributed entries and their transposes (structurally
+    /// symmetric, as the saddle-point LDLᵀ of the symmetric part needs), and the diagonal.
     fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {
-        let mut k = 0;
-        let mut cols: Vec<Vec<usize>> = Vec::with_capacity(n);
-        for c in 0..n {
-            let mut rows: Vec<usize> = if c < solid.n {
-                solid.row_idx[solid.col_ptr[c]..solid.col_ptr[c + 1]].to_vec()
-            } else {
-                vec![]
-            };
-            while k < key.len() && key[k].0 == c {
-                rows.push(key[k].1);
-                k += 1;
-            }
-            if rows.is_empty() {
+        let mut cols: Vec<Vec<usize>> = (0..n)
+            .map(|c| {
+                let mut rows = if c < solid.n {
+                    solid.row_idx[solid.col_ptr[c]..solid.col_ptr[c + 1]].to_vec()
+                } else {
+                    vec![]
+                };
                 rows.push(c);
-            }
+                rows
+            })
+            .collect();
+        for &(c, r) in key {
+            cols[c].push(r);
+            cols[r].push(c);
+        }
+        for rows in &mut cols {
             rows.sort_unstable();
             rows.dedup();
-            cols.push(rows);
         }
         self.matrix = SparseMatrix::from_columns(n, cols.into_iter());
         self.solid_map.clear();

@@ -499,17 +499,10 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        // The mortar tangent (finite-difference geometry terms) and the friction tangent are
-        // not symmetric: they go to LU.
-        let method = if case
-            .contact
-            .iter()
-            .any(|c| c.formulation == "mortar" || c.friction > 0.0)
-        {
-            Method::Lu
-        } else {
-            Method::SaddleLdlt
-        };
+        // Contact tangents are symmetric saddle-point matrices up to the friction and mortar
+        // geometry terms: LDLᵀ of the symmetric part with GMRES on the exact matrix (LU if
+        // that fails).
+        let method = Method::SaddleLdlt;
         let report = newton::solve(&mut cp, &settings, method)?;
         let pressures = cp
             .pairs

@@ -3,6 +3,7 @@
 //! multipliers), LU otherwise. The symbolic factorisation is kept and reused while the
 //! pattern is unchanged (compared with a copy of the last pattern).
 
+use super::gmres;
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
@@ -35,8 +36,12 @@ pub struct LinearSolver {
     /// transpose.
     exact: SparseMatrix,
     transpose: Vec<usize>,
-    /// Refinement steps done in the last solve.
+    /// GMRES iterations done in the last solve (SaddleLdlt).
     pub refinement_steps: usize,
+    /// SaddleLdlt: GMRES failed on this problem's tangent; LU is used from then on.
+    lu_fallback: bool,
+    /// Solves that fell back to LU (for reports).
+    pub lu_fallbacks: usize,
 }
 
 impl LinearSolver {
@@ -55,6 +60,8 @@ impl LinearSolver {
             exact: SparseMatrix::default(),
             transpose: vec![],
             refinement_steps: 0,
+            lu_fallback: false,
+            lu_fallbacks: 0,
         }
     }
 
@@ -90,6 +97,7 @@ impl LinearSolver {
                     ))
                 })?);
             }
+            Method::SaddleLdlt if self.lu_fallback => self.factor_lu(a)?,
             Method::SaddleLdlt => {
                 // Factorise the symmetric part; `solve` refines with the exact matrix, so a
                 // slightly non-symmetric tangent (contact geometry terms) is solved exactly.
@@ -100,9 +108,9 @@ impl LinearSolver {
                         .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap_or(usize::MAX))
                         .collect();
                     if self.transpose.contains(&usize::MAX) {
-                        return Err(Error::solve(
-                            "saddle-point LDLT needs a structurally symmetric matrix",
-                        ));
+                        // not structurally symmetric: no symmetric part to factorise
+                        self.lu_fallback = true;
+                        return self.factor_lu(a);
                     }
                     self.ldlt = Some(SaddleLdlt::new(a, self.n_primal)?);
                     self.symbolic_count += 1;
@@ -113,27 +121,33 @@ impl LinearSolver {
                     self.exact.clone_from(a);
                 }
                 let f = self.ldlt.as_mut().expect("analysed above");
-                if let Err(e) = f.factor(a, &self.transpose) {
-                    self.pattern = None;
+                if f.factor(a, &self.transpose).is_err() {
+                    // A zero pivot of the symmetric part (possible when the tangent is not
+                    // symmetric): LU of the exact matrix decides whether it is singular.
+                    self.lu_fallback = true;
+                    self.lu_fallbacks += 1;
                     self.ldlt = None;
-                    return Err(e);
+                    return self.factor_lu(a);
                 }
             }
-            Method::Lu => {
-                if self.sym_lu.is_none() {
-                    self.sym_lu = Some(
-                        SymbolicLu::try_new(mat.symbolic())
-                            .map_err(|e| Error::solve(format!("symbolic LU failed: {e:?}")))?,
-                    );
-                    self.symbolic_count += 1;
-                }
-                let sym = self.sym_lu.clone().unwrap();
-                self.lu =
-                    Some(Lu::try_new_with_symbolic(sym, mat).map_err(|e| {
-                        Error::solve(format!("the system matrix is singular ({e:?})"))
-                    })?);
-            }
+            Method::Lu => self.factor_lu(a)?,
         }
+        Ok(())
+    }
+
+    fn factor_lu(&mut self, a: &SparseMatrix) -> Result<()> {
+        if self.sym_lu.is_none() {
+            self.sym_lu = Some(
+                SymbolicLu::try_new(a.as_faer().symbolic())
+                    .map_err(|e| Error::solve(format!("symbolic LU failed: {e:?}")))?,
+            );
+            self.symbolic_count += 1;
+        }
+        let sym = self.sym_lu.clone().unwrap();
+        self.lu = Some(
+            Lu::try_new_with_symbolic(sym, a.as_faer())
+                .map_err(|e| Error::solve(format!("the system matrix is singular ({e:?})")))?,
+        );
         Ok(())
     }
 
@@ -146,12 +160,17 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
+            Method::SaddleLdlt if self.lu_fallback => self
+                .lu
+                .as_ref()
+                .expect("factor before solve")
+                .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
             Method::Lu => self
                 .lu
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt => self.solve_refined(b)?,
+            Method::SaddleLdlt => self.solve_iterative(b)?,
         }
         if b.iter().any(|v| !v.is_finite()) {
             return Err(Error::solve(
@@ -163,41 +182,44 @@ impl LinearSolver {
 }
 
 impl LinearSolver {
-    /// x = M⁻¹ b refined with the exact matrix A: x += M⁻¹ (b − A x) until the residual is
-    /// at round-off level.
-    fn solve_refined(&mut self, b: &mut [f64]) -> Result<()> {
-        let f = self.ldlt.as_mut().expect("factor before solve");
+    /// A x = b by GMRES on the exact matrix, preconditioned by the LDLᵀ of its symmetric
+    /// part: one iteration for a symmetric tangent, a few for the contact tangents that are
+    /// not. If GMRES stalls (a tangent far from symmetric), LU of the exact matrix takes over,
+    /// for this solve and the rest of the problem.
+    fn solve_iterative(&mut self, b: &mut [f64]) -> Result<()> {
         let rhs = b.to_vec();
-        let scale = rhs
-            .iter()
-            .fold(0.0f64, |m, v| m.max(v.abs()))
-            .max(f64::MIN_POSITIVE);
-        f.solve(b);
-        let mut r = vec![0.0; b.len()];
-        self.refinement_steps = 0;
-        let mut last = f64::INFINITY;
-        loop {
-            self.exact.mul_vec(b, &mut r);
-            for (ri, bi) in r.iter_mut().zip(&rhs) {
-                *ri = bi - *ri;
+        let f = self.ldlt.as_mut().expect("factor before solve");
+        let exact = &self.exact;
+        f.solve(b); // start from M⁻¹ b: enough when the tangent is symmetric
+        let result = gmres::solve(
+            &mut |v, out| exact.mul_vec(v, out),
+            &mut |v| f.solve(v),
+            &rhs,
+            b,
+            1e-12,
+            30,
+            60,
+        );
+        match result {
+            Ok(its) => {
+                self.refinement_steps = its;
+                Ok(())
             }
-            let res = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            if res <= 1e-12 * scale || (self.refinement_steps > 3 && res > 0.5 * last) {
-                if res > 1e-8 * scale {
-                    return Err(Error::solve(format!(
-                        "the linear solve did not converge (relative residual {:.1e}); the tangent is too \
-                         far from symmetric for the LDLT solver",
-                        res / scale
-                    )));
-                }
-                return Ok(());
+            Err(_) => {
+                self.lu_fallback = true;
+                self.lu_fallbacks += 1;
+                let exact = std::mem::take(&mut self.exact);
+                let factored = self.factor_lu(&exact);
+                self.exact = exact;
+                factored?;
+                b.copy_from_slice(&rhs);
+                let n = b.len();
+                self.lu
+                    .as_ref()
+                    .expect("factorised above")
+                    .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
+                Ok(())
             }
-            last = res;
-            f.solve(&mut r);
-            for (bi, di) in b.iter_mut().zip(&r) {
-                *bi += di;
-            }
-            self.refinement_steps += 1;
         }
     }
 }
