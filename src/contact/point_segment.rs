@@ -106,6 +106,10 @@ pub struct PointToSegment {
     u_start: Vec<f64>,
 }
 
+/// Coefficients of a linear form over dofs: (dof, value).
+type Coefs<'a> = &'a [(usize, f64)];
+type OwnedCoefs = Vec<(usize, f64)>;
+
 /// What the friction term of one point needs from the normal one.
 struct FrictionPoint<'a> {
     mu: f64,
@@ -117,6 +121,8 @@ struct FrictionPoint<'a> {
     e: &'a Eval,
     snodes: &'a [usize],
     mnodes: &'a [usize],
+    /// δξ̄ and (n·δt)/|t| over dofs (None when the projection is clamped at a cell end).
+    geo: Option<(Coefs<'a>, Coefs<'a>)>,
 }
 
 /// Geometry of one contact point at the current state.
@@ -478,10 +484,12 @@ impl PointToSegment {
                     rl[m] += -w * lp / rho * nv;
                 }
             }
-            if chi && !e.clamped {
-                // −ω λ̂ ∂B/∂u: B moves with the master normal n and the projection ξ̄.
-                //   δξ̄ = [(δx_s − Σ N_m δu_m)·t + d n·Σ N_m' δu_m] / (|t|² − d n·t'')
-                //   δn  = −τ (n·δt)/|t|,  δt = Σ N_m' δu_m + t'' δξ̄
+            // Variations of the projection and of the master frame (normal part and friction):
+            //   δξ̄ = [(δx_s − Σ N_m δu_m)·t + d n·Σ N_m' δu_m] / (|t|² − d n·t'')
+            //   δn  = −τ (n·δt)/|t|,  δτ = n (n·δt)/|t|,  δt = Σ N_m' δu_m + t'' δξ̄
+            // as coefficient lists over dofs: cxi for δξ̄, cn for (n·δt)/|t|.
+            let mut geo: Option<(OwnedCoefs, OwnedCoefs)> = None;
+            if (chi || self.opts.friction.is_some()) && !e.clamped {
                 let tn2 = e.t[0] * e.t[0] + e.t[1] * e.t[1];
                 let den = tn2 - e.d * (e.normal[0] * e.tt[0] + e.normal[1] * e.tt[1]);
                 let lt = tn2.sqrt();
@@ -506,20 +514,24 @@ impl PointToSegment {
                         cn.push((2 * n + comp, e.dnm[a] * e.normal[comp] / lt));
                     }
                 }
+                geo = Some((cxi, cn));
+            }
+            if let (true, Some((cxi, cn))) = (chi, &geo) {
+                // −ω λ̂ ∂B/∂u: B moves with the master normal n and the projection ξ̄.
                 let f = -w * lhat;
                 for (a, &n) in snodes.iter().enumerate() {
                     for comp in 0..2 {
-                        for &(col, v) in &cn {
+                        for &(col, v) in cn.iter() {
                             k.add(2 * n + comp, col, f * e.ns[a] * (-e.tau[comp]) * v);
                         }
                     }
                 }
                 for (a, &n) in mnodes.iter().enumerate() {
                     for comp in 0..2 {
-                        for &(col, v) in &cxi {
+                        for &(col, v) in cxi.iter() {
                             k.add(2 * n + comp, col, f * (-e.dnm[a] * e.normal[comp]) * v);
                         }
-                        for &(col, v) in &cn {
+                        for &(col, v) in cn.iter() {
                             k.add(2 * n + comp, col, f * (-e.nm[a]) * (-e.tau[comp]) * v);
                         }
                     }
@@ -556,6 +568,7 @@ impl PointToSegment {
                     e: &e,
                     snodes,
                     mnodes,
+                    geo: geo.as_ref().map(|(a, b)| (a.as_slice(), b.as_slice())),
                 };
                 self.friction_point(&fp, u, lam, ru, rl, k, ndof + mult_base);
             }
@@ -649,6 +662,99 @@ impl PointToSegment {
             .collect()
     }
 
+    /// The friction terms' dependence on the geometry: the slip Δw = τ·(Σ N_s Δu_s −
+    /// Σ N_m(ξ̄) Δu_m) and the direction T = (N_s τ, −N_m τ) of the tangential force both
+    /// turn with τ and slide with ξ̄ (Δu: displacement since the step start).
+    #[allow(clippy::too_many_arguments)]
+    fn friction_geometry(
+        &self,
+        fp: &FrictionPoint,
+        u: &[f64],
+        cxi: &[(usize, f64)],
+        cn: &[(usize, f64)],
+        t: f64,
+        law: friction::State,
+        k: &mut Triplets,
+        fm: &[(usize, f64)],
+        mbase: usize,
+    ) {
+        let e = fp.e;
+        let (w, mu, lp) = (fp.w, fp.mu, fp.lp);
+        let du = |n: usize, c: usize| u[2 * n + c] - self.u_start[2 * n + c];
+        let mut big_du = [0.0; 2];
+        for c in 0..2 {
+            for (a, &n) in fp.snodes.iter().enumerate() {
+                big_du[c] += e.ns[a] * du(n, c);
+            }
+            for (b, &n) in fp.mnodes.iter().enumerate() {
+                big_du[c] -= e.nm[b] * du(n, c);
+            }
+        }
+        let n_du = e.normal[0] * big_du[0] + e.normal[1] * big_du[1];
+        let tdu_m: f64 = fp
+            .mnodes
+            .iter()
+            .enumerate()
+            .map(|(b, &n)| e.dnm[b] * (e.tau[0] * du(n, 0) + e.tau[1] * du(n, 1)))
+            .sum();
+        // geometric part of δΔw
+        let g_dw: Vec<(usize, f64)> = cn
+            .iter()
+            .map(|&(col, v)| (col, n_du * v))
+            .chain(cxi.iter().map(|&(col, v)| (col, -tdu_m * v)))
+            .collect();
+        let q = friction::traction(mu, lp, t, law); // μ λ t (stick) or μ λ sign(t) (slip)
+        if law == friction::State::Stick {
+            // q = μ λ (Λ + ρ_f Δw): the force on the dofs T and the stick rows −μ λ Δw
+            let tv = self.friction_direction(fp);
+            for &(d, v) in &tv {
+                for &(col, gv) in &g_dw {
+                    k.add(d, col, -w * mu * lp * self.opts.rho_f * v * gv);
+                }
+            }
+            for &(m, nv) in fm {
+                for &(col, gv) in &g_dw {
+                    k.add(mbase + m, col, -w * mu * lp * nv * gv);
+                }
+            }
+        }
+        // −ω q δT: slave rows N_s n_c (n·δt)/|t|; master rows −N_m' τ_c δξ̄ − N_m n_c (n·δt)/|t|
+        for (a, &n) in fp.snodes.iter().enumerate() {
+            for c in 0..2 {
+                for &(col, v) in cn {
+                    k.add(2 * n + c, col, -w * q * e.ns[a] * e.normal[c] * v);
+                }
+            }
+        }
+        for (b, &n) in fp.mnodes.iter().enumerate() {
+            for c in 0..2 {
+                for &(col, v) in cxi {
+                    k.add(2 * n + c, col, w * q * e.dnm[b] * e.tau[c] * v);
+                }
+                for &(col, v) in cn {
+                    k.add(2 * n + c, col, w * q * e.nm[b] * e.normal[c] * v);
+                }
+            }
+        }
+    }
+
+    /// T over dofs: slave N_s τ, master −N_m τ.
+    fn friction_direction(&self, fp: &FrictionPoint) -> Vec<(usize, f64)> {
+        let e = fp.e;
+        let mut tv = vec![];
+        for (a, &n) in fp.snodes.iter().enumerate() {
+            for c in 0..2 {
+                tv.push((2 * n + c, e.ns[a] * e.tau[c]));
+            }
+        }
+        for (b, &n) in fp.mnodes.iter().enumerate() {
+            for c in 0..2 {
+                tv.push((2 * n + c, -e.nm[b] * e.tau[c]));
+            }
+        }
+        tv
+    }
+
     /// Coulomb friction at one contact point (contact.md §1.8): with the semi-multiplier
     /// Λ (|Λ| ≤ 1) and the slip Δw since the start of the step along the master tangent,
     /// t = Λ + ρ_f Δw; stick if |t| ≤ 1 (then Δw = 0 weakly), slip otherwise (Λ = ±1);
@@ -717,6 +823,9 @@ impl PointToSegment {
             return;
         }
         let (t, law) = friction::state(big_l, dw, rho_f);
+        if let Some((cxi, cn)) = fp.geo {
+            self.friction_geometry(fp, u, cxi, cn, t, law, k, &fm, mbase);
+        }
         if law == friction::State::Stick {
             let q = friction::traction(mu, lp, t, law); // μ λ t
             for &(d, v) in &tv {

@@ -124,6 +124,10 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn backtracking(&self) -> bool {
+        self.pairs.iter().any(|p| p.friction() > 0.0)
+    }
+
     fn commit_step(&mut self) {
         for p in &mut self.pairs {
             p.commit(&self.solid.u);

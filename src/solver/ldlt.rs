@@ -56,27 +56,61 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
             adj[i].extend_from_slice(list);
         }
     }
-    let mut col_ptr = vec![0usize];
-    let mut rows = vec![];
     for (j, list) in adj.iter_mut().enumerate() {
         list.push(j);
         list.sort_unstable();
         list.dedup();
-        rows.extend_from_slice(list);
+    }
+    // Unknowns with the same adjacency (the two dofs of a node) are ordered together: AMD
+    // runs on the graph of these groups, about four times smaller.
+    let mut group_of = vec![0usize; np];
+    let mut groups: Vec<usize> = vec![]; // first unknown of each group
+    for j in 0..np {
+        if j > 0 && adj[j] == adj[j - 1] {
+            group_of[j] = group_of[j - 1];
+        } else {
+            group_of[j] = groups.len();
+            groups.push(j);
+        }
+    }
+    let ng = groups.len();
+    let mut col_ptr = vec![0usize];
+    let mut rows = vec![];
+    for &j in &groups {
+        let start = rows.len();
+        rows.extend(adj[j].iter().map(|&i| group_of[i]));
+        rows[start..].sort_unstable();
+        let mut k = start;
+        for q in start..rows.len() {
+            if q == start || rows[q] != rows[k - 1] {
+                rows[k] = rows[q];
+                k += 1;
+            }
+        }
+        rows.truncate(k);
         col_ptr.push(rows.len());
     }
-    let sym = SymbolicSparseColMatRef::new_checked(np, np, &col_ptr, None, &rows);
-    let mut perm = vec![0usize; np];
-    let mut perm_inv = vec![0usize; np];
-    let mut mem = MemBuffer::new(amd::order_scratch::<usize>(np, rows.len()));
+    let sym = SymbolicSparseColMatRef::new_checked(ng, ng, &col_ptr, None, &rows);
+    let mut gperm = vec![0usize; ng];
+    let mut gperm_inv = vec![0usize; ng];
+    let mut mem = MemBuffer::new(amd::order_scratch::<usize>(ng, rows.len()));
     amd::order(
-        &mut perm,
-        &mut perm_inv,
+        &mut gperm,
+        &mut gperm_inv,
         sym,
         amd::Control::default(),
         MemStack::new(&mut mem),
     )
     .map_err(|e| Error::solve(format!("ordering failed: {e:?}")))?;
+    let mut perm = Vec::with_capacity(np);
+    for &g in &gperm {
+        let first = groups[g];
+        perm.extend((first..np).take_while(|&j| group_of[j] == g));
+    }
+    let mut perm_inv = vec![0usize; np];
+    for (i, &j) in perm.iter().enumerate() {
+        perm_inv[j] = i;
+    }
     // bucket each multiplier after the last of its coupled primal unknowns
     let mut after: Vec<Vec<usize>> = vec![vec![]; np + 1];
     for (m, list) in coupled.iter().enumerate() {

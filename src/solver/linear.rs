@@ -103,10 +103,7 @@ impl LinearSolver {
                 // slightly non-symmetric tangent (contact geometry terms) is solved exactly.
                 let fresh = self.ldlt.is_none();
                 if fresh {
-                    self.transpose = (0..a.n)
-                        .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (p, c)))
-                        .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap_or(usize::MAX))
-                        .collect();
+                    self.transpose = transpose_positions(a);
                     if self.transpose.contains(&usize::MAX) {
                         // not structurally symmetric: no symmetric part to factorise
                         self.lu_fallback = true;
@@ -224,6 +221,26 @@ impl LinearSolver {
     }
 }
 
+/// For each entry (r, c) of `a`, the position of (c, r), or usize::MAX if not in the pattern.
+/// Columns are visited in order, so the cursor in each column only moves forward.
+pub fn transpose_positions(a: &SparseMatrix) -> Vec<usize> {
+    let mut cursor: Vec<usize> = a.col_ptr[..a.n].to_vec();
+    let mut out = vec![usize::MAX; a.nnz()];
+    for c in 0..a.n {
+        for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+            let r = a.row_idx[p];
+            let end = a.col_ptr[r + 1];
+            while cursor[r] < end && a.row_idx[cursor[r]] < c {
+                cursor[r] += 1;
+            }
+            if cursor[r] < end && a.row_idx[cursor[r]] == c {
+                out[p] = cursor[r];
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -266,6 +283,26 @@ mod tests {
             }
             assert_eq!(s.symbolic_count, 1);
         }
+    }
+
+    #[test]
+    fn transpose_positions_match_a_search() {
+        let cols = (0..6).map(|c| match c {
+            0 => vec![0, 2, 5],
+            1 => vec![1, 3],
+            2 => vec![0, 2],
+            3 => vec![3, 4],
+            4 => vec![1, 4],
+            _ => vec![0, 5],
+        });
+        let a = SparseMatrix::from_columns(6, cols);
+        let t = transpose_positions(&a);
+        for c in 0..6 {
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                assert_eq!(t[p], a.position(c, a.row_idx[p]).unwrap_or(usize::MAX));
+            }
+        }
+        assert!(t.contains(&usize::MAX)); // (3, 1) has no (1, 3) partner... and so on
     }
 
     #[test]

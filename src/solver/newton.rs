@@ -35,6 +35,11 @@ pub trait Nonlinear {
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
         Ok(0)
     }
+    /// Whether a correction that raises the residual without any status change should be
+    /// cut back (semi-smooth terms such as friction, which can cycle).
+    fn backtracking(&self) -> bool {
+        false
+    }
     /// Called when a load step has converged (commit history variables).
     fn commit_step(&mut self) {}
     /// Called when a load step failed and is retried from its start.
@@ -106,6 +111,7 @@ pub fn solve(
     let base = 1.0 / settings.steps.max(1) as f64;
     let mut dl = base;
     let mut cuts = 0;
+    let backtracking = problem.backtracking();
     while lambda_done < 1.0 - 1e-12 {
         let lambda = (lambda_done + dl).min(1.0);
         let x_start = x.clone();
@@ -116,9 +122,34 @@ pub fn solve(
         };
         let mut failure = None;
         let mut changes = usize::MAX;
+        // the last correction, for the backtracking below
+        let mut last_dx: Option<Vec<f64>> = None;
         for it in 0..=settings.max_iterations {
             let t = std::time::Instant::now();
-            let norms = problem.evaluate(&x, lambda, &mut r, true)?;
+            // Near convergence (small residual, statuses settled) the tangent is probably not
+            // needed: check the residual alone first, and assemble the tangent only if it
+            // is not converged after all.
+            let prev = step.iterations.last().map(|i| i.relative_residual);
+            let likely_converged = changes == 0 && prev.is_some_and(|p| p < 1e-3);
+            let mut norms = problem.evaluate(&x, lambda, &mut r, !likely_converged)?;
+            if likely_converged
+                && !(norms.relative() <= settings.tolerance || norms.residual == 0.0)
+            {
+                norms = problem.evaluate(&x, lambda, &mut r, true)?;
+            }
+            // Backtracking: a full correction that raised the residual without changing any
+            // contact status (semi-smooth Newton can cycle between stick and slip) is halved,
+            // up to three times.
+            if let (Some(dx), Some(p), 0, true) = (&last_dx, prev, changes, backtracking) {
+                let mut alpha = 1.0;
+                while norms.relative() > p && alpha > 0.2 {
+                    alpha *= 0.5;
+                    for (xi, d) in x.iter_mut().zip(dx) {
+                        *xi -= alpha * d;
+                    }
+                    norms = problem.evaluate(&x, lambda, &mut r, true)?;
+                }
+            }
             report.time_evaluate_s += t.elapsed().as_secs_f64();
             let rel = norms.relative();
             step.iterations.push(Iteration {
@@ -187,6 +218,7 @@ pub fn solve(
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
             }
+            last_dx = Some(r.clone());
             changes = problem.update_status(&x, lambda)?;
             step.iterations.last_mut().unwrap().status_changes = changes;
             if settings.verbose && changes > 0 {
