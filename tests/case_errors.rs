@@ -171,6 +171,24 @@ fn bad_contact_entries_are_rejected() {
     );
     let e = error_of("arc.toml", &missing);
     assert!(e.starts_with("[[contact]] 1 (Arc on Bottom): slave surface: group 'Arc' is not in the mesh; groups are: Body"), "{e}");
+    let pen = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\npenalty = 1e4\n[[force]]",
+    );
+    let e = error_of("pen.toml", &pen);
+    assert_eq!(
+        e,
+        "[[contact]] 1 (Top on Bottom): penalty and exclude go with formulation = \"node-to-segment\""
+    );
+    let neg_pen = GOOD.replace(
+        "[[force]]",
+        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nformulation = \"node-to-segment\"\npenalty = -3.0\n[[force]]",
+    );
+    let e = error_of("negpen.toml", &neg_pen);
+    assert_eq!(
+        e,
+        "[[contact]] 1 (Top on Bottom): penalty must be positive, got -3"
+    );
     let gap = GOOD.replace(
         "[[force]]",
         "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\ninitial_gap = 0.1\n[[force]]",

@@ -8,7 +8,7 @@ use tribo::mesh::{CellKind, MeshBuilder};
 
 const P: f64 = 25.0;
 
-fn case_text(formulation: &str) -> String {
+fn case_text(formulation: &str, extra: &str) -> String {
     format!(
         r#"
 [mesh]
@@ -42,19 +42,28 @@ slave = "UpperBottom"
 master = "LowerTop"
 formulation = "{formulation}"
 initial = "all"
+{extra}
 "#
     )
 }
 
 /// Largest relative deviation of the nodal contact pressures from P.
 fn patch(kind: CellKind, formulation: &str) -> f64 {
+    let p = pressures(kind, formulation, "");
+    p.iter()
+        .map(|&(_, p)| ((p - P) / P).abs())
+        .fold(0.0, f64::max)
+}
+
+/// Nodal contact pressures (x, p) of the patch test.
+fn pressures(kind: CellKind, formulation: &str, extra: &str) -> Vec<(f64, f64)> {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, kind, 0.0).unwrap();
     let upper = rectangle([0.0, 0.0], 2.0, 1.0, 5, 2, kind, 0.0).unwrap();
     let mut b = MeshBuilder::new("two blocks");
     b.append(&lower, |g| format!("Lower{g}"));
     b.append(&upper, |g| format!("Upper{g}"));
     let mesh = b.finish().unwrap();
-    let case: CaseFile = toml::from_str(&case_text(formulation)).unwrap();
+    let case: CaseFile = toml::from_str(&case_text(formulation, extra)).unwrap();
     let _ = build_mesh; // the mesh is assembled here from two generated blocks
     let out = run(&case, &mesh, false).unwrap();
     let worst = out.contact_pressure[0]
@@ -62,10 +71,16 @@ fn patch(kind: CellKind, formulation: &str) -> f64 {
         .map(|&(_, p)| ((p - P) / P).abs())
         .fold(0.0, f64::max);
     println!(
-        "{kind} {formulation}: max |p - P| / P = {worst:.2e} {:?}",
+        "{kind} {formulation} {extra}: max |p - P| / P = {worst:.2e} {:?}",
         out.contact_pressure[0]
     );
-    worst
+    // (x, p) ordered along the interface
+    let mut p: Vec<(f64, f64)> = out.contact_pressure[0]
+        .iter()
+        .map(|&(n, p)| (mesh.coords[n][0], p))
+        .collect();
+    p.sort_by(|a, b| a.0.total_cmp(&b.0));
+    p
 }
 
 #[test]
@@ -82,4 +97,48 @@ fn point_to_segment_patch_test_is_reported() {
         let e = patch(kind, "point-to-segment");
         assert!(e.is_finite());
     }
+}
+
+#[test]
+fn node_to_segment_patch_test_is_reported_and_balances_the_load() {
+    // Node-to-segment is not expected to pass the patch test (printed), but its nodal
+    // forces, pressure × the node's share of the surface, carry the whole load.
+    for kind in [CellKind::Quad4, CellKind::Quad8] {
+        let e = patch(kind, "node-to-segment");
+        assert!(e.is_finite());
+    }
+    // Quad4: 5 slave cells of 0.4 on a width of 2: shares 0.2 at the ends, 0.4 inside.
+    let p = pressures(CellKind::Quad4, "node-to-segment", "");
+    assert_eq!(p.len(), 6);
+    let total: f64 = p
+        .iter()
+        .enumerate()
+        .map(|(i, &(_, pi))| pi * if i == 0 || i == 5 { 0.2 } else { 0.4 })
+        .sum();
+    // equilibrium holds to the Newton tolerance (relative residual 1e-6)
+    assert!(
+        (total - 2.0 * P).abs() < 1e-5 * 2.0 * P,
+        "total force {total}"
+    );
+}
+
+#[test]
+fn node_to_segment_penalty_tends_to_the_multiplier_solution() {
+    // λ = −k d: the deviation from the exact enforcement falls like 1/k.
+    let exact = pressures(CellKind::Quad4, "node-to-segment", "");
+    let deviation = |k: f64| {
+        let p = pressures(
+            CellKind::Quad4,
+            "node-to-segment",
+            &format!("penalty = {k}"),
+        );
+        p.iter()
+            .zip(&exact)
+            .map(|(a, b)| (a.1 - b.1).abs())
+            .fold(0.0, f64::max)
+    };
+    let (d3, d5) = (deviation(1e3), deviation(1e5));
+    println!("penalty deviation: k = 1e3: {d3:.3e}, k = 1e5: {d5:.3e}");
+    assert!(d3 > 1e-6 * P, "a soft penalty must differ visibly: {d3}");
+    assert!(d5 < d3 / 50.0, "{d3} -> {d5}");
 }

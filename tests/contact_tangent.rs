@@ -137,4 +137,8 @@ fn mortar_tangent_matches_finite_differences() {
 fn frictional_tangent_matches_finite_differences() {
     check_with(CellKind::Quad4, "point-to-segment", "friction = 0.3", 1e-6);
     check_with(CellKind::Quad8, "point-to-segment", "friction = 0.3", 1e-6);
+    let nodal = "friction = 0.3\nintegration = \"nodal\"";
+    check_with(CellKind::Quad4, "point-to-segment", nodal, 1e-6);
+    check_with(CellKind::Quad8, "point-to-segment", nodal, 1e-6);
+    check_with(CellKind::Quad8, "node-to-segment", "friction = 0.3", 1e-6);
 }

@@ -401,8 +401,21 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 c.rho_f
             )));
         }
+        let node_to_segment = c.formulation == "node-to-segment";
+        if !node_to_segment && (c.penalty.is_some() || !c.exclude.is_empty()) {
+            return Err(Error::model(format!(
+                "{what}: penalty and exclude go with formulation = \"node-to-segment\""
+            )));
+        }
+        if let Some(k) = c.penalty {
+            if k.is_nan() || k <= 0.0 {
+                return Err(Error::model(format!(
+                    "{what}: penalty must be positive, got {k}"
+                )));
+            }
+        }
         match c.formulation.as_str() {
-            "point-to-segment" => {}
+            "point-to-segment" | "node-to-segment" => {}
             "mortar" if c.friction > 0.0 => {
                 return Err(Error::model(format!(
                     "{what}: friction is not available with the mortar formulation yet; use point-to-segment"
@@ -437,7 +450,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             }
             other => {
                 return Err(Error::model(format!(
-                    "{what}: formulation '{other}' is not one of point-to-segment, mortar"
+                    "{what}: formulation '{other}' is not one of point-to-segment, node-to-segment, mortar"
                 )))
             }
         }
@@ -448,8 +461,18 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     .map_err(|e| Error::model(format!("{what}: friction_exclude: {e}")))?,
             );
         }
+        let mut contact_excluded = vec![];
+        for g in &c.exclude {
+            contact_excluded.extend(
+                mesh.node_group(g)
+                    .map_err(|e| Error::model(format!("{what}: exclude: {e}")))?,
+            );
+        }
         let opts = point_segment::Options {
             integration,
+            node_to_segment,
+            penalty: c.penalty,
+            contact_excluded,
             rho: c.rho,
             initial,
             initial_gap: c.initial_gap,

@@ -268,6 +268,13 @@ pub struct ContactSpec {
     /// Node groups excluded from friction only (e.g. a node on a symmetry axis).
     #[serde(default)]
     pub friction_exclude: Vec<String>,
+    /// node-to-segment: penalty stiffness (force per length) instead of exact
+    /// non-penetration by multipliers.
+    #[serde(default)]
+    pub penalty: Option<f64>,
+    /// node-to-segment: node groups excluded from contact.
+    #[serde(default)]
+    pub exclude: Vec<String>,
 }
 
 fn default_formulation() -> String {

@@ -10,6 +10,12 @@
 //!   active:   r_u += −ω λ̂ B,            r_λ += −ω d N_s
 //!   inactive:                           r_λ += −ω (λ/ρ) N_s
 //! with B = [N_s n ; −N_m n]. The tangent freezes pairing and normal.
+//!
+//! The same machinery gives the `node-to-segment` formulation (the reference's "discrete"
+//! method, contact.md §2): one point per slave node with unit weight, so that λ is the
+//! nodal contact force, exact non-penetration of the slave nodes (or a penalty: active rows
+//! d + λ/k = 0, i.e. λ = −k d). Pressures for output divide the force by the node's share
+//! of the slave surface.
 
 use super::friction;
 use super::projection::{point_and_tangent, project};
@@ -41,6 +47,12 @@ pub enum InitialStatus {
 #[derive(Clone, Debug)]
 pub struct Options {
     pub integration: Integration,
+    /// One point per slave node with unit weight (node-to-segment); `integration` is unused.
+    pub node_to_segment: bool,
+    /// Node-to-segment penalty stiffness k (force per length): λ = −k d instead of d = 0.
+    pub penalty: Option<f64>,
+    /// Slave nodes excluded from contact (node-to-segment: the reference's SANS_GROUP_NO).
+    pub contact_excluded: Vec<usize>,
     /// Augmentation coefficient ρ (the reference's COEF_CONT, 100).
     pub rho: f64,
     pub initial: InitialStatus,
@@ -62,6 +74,9 @@ impl Default for Options {
     fn default() -> Self {
         Options {
             integration: Integration::Gauss(3),
+            node_to_segment: false,
+            penalty: None,
+            contact_excluded: vec![],
             rho: 100.0,
             initial: InitialStatus::All,
             initial_gap: None,
@@ -82,6 +97,8 @@ struct Point {
     omega: f64,
     active: bool,
     excluded: bool,
+    /// Never active (a node excluded from contact).
+    left_out: bool,
     /// Index into master.cells and parametric coordinate of the (clamped) projection.
     master: usize,
     xi_m: f64,
@@ -104,6 +121,9 @@ pub struct PointToSegment {
     candidates: Vec<Vec<usize>>,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
+    /// Per multiplier, what turns it into a pressure: 1 for the continuous method (λ is a
+    /// pressure), the node's share of the slave surface for node-to-segment (λ is a force).
+    node_weight: Vec<f64>,
 }
 
 /// Coefficients of a linear form over dofs: (dof, value).
@@ -152,41 +172,82 @@ impl PointToSegment {
     ) -> Self {
         let mut mult_nodes = slave.nodes.clone();
         mult_nodes.sort_unstable();
-        let mult_of = mult_nodes
+        let mult_of: HashMap<usize, usize> = mult_nodes
             .iter()
             .enumerate()
             .map(|(k, &n)| (n, k))
             .collect();
+        let measure_at = |p: [f64; 2]| match model {
+            Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * p[0],
+            _ => thickness,
+        };
         let mut points = vec![];
+        // the nodal rule (trapezoid / Simpson) gives each node its share of the surface
+        let mut node_weight = vec![0.0; mult_nodes.len()];
         for (ic, &c) in slave.cells.iter().enumerate() {
             let kind = mesh.kind(c);
             let x0: Vec<[f64; 2]> = mesh.cell_nodes(c).iter().map(|&n| mesh.coords[n]).collect();
+            let nodal: Vec<(f64, f64)> = if kind.is_quadratic() {
+                vec![(-1.0, 1.0 / 3.0), (1.0, 1.0 / 3.0), (0.0, 4.0 / 3.0)]
+            } else {
+                vec![(-1.0, 1.0), (1.0, 1.0)]
+            };
+            for (a, &(xi, w)) in nodal.iter().enumerate() {
+                let (p, t) = point_and_tangent(kind, &x0, xi);
+                node_weight[mult_of[&mesh.cell_nodes(c)[a]]] +=
+                    w * t[0].hypot(t[1]) * measure_at(p);
+            }
+            if opts.node_to_segment {
+                continue;
+            }
             let rule: Vec<(f64, f64)> = match opts.integration {
                 Integration::Gauss(n) => {
                     let (p, w) = gauss_legendre(n);
                     p.into_iter().zip(w).collect()
                 }
-                Integration::Nodal if kind.is_quadratic() => {
-                    vec![(-1.0, 1.0 / 3.0), (1.0, 1.0 / 3.0), (0.0, 4.0 / 3.0)]
-                }
-                Integration::Nodal => vec![(-1.0, 1.0), (1.0, 1.0)],
+                Integration::Nodal => nodal,
             };
             for (xi, w) in rule {
                 let (p, t) = point_and_tangent(kind, &x0, xi);
-                let measure = match model {
-                    Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * p[0],
-                    _ => thickness,
-                };
                 points.push(Point {
                     cell: ic,
                     xi,
-                    omega: w * t[0].hypot(t[1]) * measure,
+                    omega: w * t[0].hypot(t[1]) * measure_at(p),
                     active: false,
                     excluded: false,
+                    left_out: false,
                     master: 0,
                     xi_m: 0.0,
                 });
             }
+        }
+        if opts.node_to_segment {
+            // one unit-weight point per slave node, on the first slave cell holding it
+            for &n in &mult_nodes {
+                let (ic, a) = slave
+                    .cells
+                    .iter()
+                    .enumerate()
+                    .find_map(|(ic, &c)| {
+                        mesh.cell_nodes(c)
+                            .iter()
+                            .position(|&m| m == n)
+                            .map(|a| (ic, a))
+                    })
+                    .expect("a slave node lies on a slave cell");
+                points.push(Point {
+                    cell: ic,
+                    xi: [-1.0, 1.0, 0.0][a],
+                    omega: 1.0,
+                    active: false,
+                    excluded: false,
+                    left_out: opts.contact_excluded.contains(&n),
+                    master: 0,
+                    xi_m: 0.0,
+                });
+            }
+        } else {
+            node_weight.iter_mut().for_each(|w| *w = 1.0);
         }
         let mut master_cells_of_node: HashMap<usize, Vec<usize>> = HashMap::new();
         for (im, &c) in master.cells.iter().enumerate() {
@@ -207,6 +268,7 @@ impl PointToSegment {
             saved_status: vec![false; n_points],
             candidates,
             u_start: vec![0.0; 2 * mesh.num_nodes()],
+            node_weight,
         }
     }
 
@@ -312,7 +374,7 @@ impl PointToSegment {
             Some((_, im, xi, over)) => {
                 p.master = im;
                 p.xi_m = xi;
-                p.excluded = over > self.opts.projection_tolerance;
+                p.excluded = p.left_out || over > self.opts.projection_tolerance;
             }
             None => p.excluded = true,
         }
@@ -471,13 +533,32 @@ impl PointToSegment {
                 .map(|(a, n)| (self.mult_of[n], e.ns[a]))
                 .collect();
             let w = p.omega;
-            let lhat = lp - rho * e.d;
+            // Penalty (node-to-segment): the force is λ itself and the row d + λ/k = 0;
+            // otherwise the augmented λ̂ = λ − ρ d with d = 0.
+            let rho_u = if self.opts.penalty.is_some() {
+                0.0
+            } else {
+                rho
+            };
+            let lhat = lp - rho_u * e.d;
             if chi {
                 for &(dof, bv) in &b {
                     ru[dof] += -w * lhat * bv;
                 }
                 for &(m, nv) in &mults {
                     rl[m] += -w * e.d * nv;
+                }
+                if let Some(kp) = self.opts.penalty {
+                    for &(m, nv) in &mults {
+                        rl[m] += -w * lp / kp * nv;
+                        for &(m2, n2) in &mults {
+                            k.add(
+                                ndof + mult_base + m,
+                                ndof + mult_base + m2,
+                                -w / kp * nv * n2,
+                            );
+                        }
+                    }
                 }
             } else {
                 for &(m, nv) in &mults {
@@ -540,7 +621,7 @@ impl PointToSegment {
             if chi {
                 for &(r, br) in &b {
                     for &(cc, bc) in &b {
-                        k.add(r, cc, rho * w * br * bc);
+                        k.add(r, cc, rho_u * w * br * bc);
                     }
                     for &(m, nv) in &mults {
                         k.add(r, ndof + mult_base + m, -w * br * nv);
@@ -658,7 +739,7 @@ impl PointToSegment {
         self.mult_nodes
             .iter()
             .enumerate()
-            .map(|(k, &n)| (n, -lam[k]))
+            .map(|(k, &n)| (n, -lam[k] / self.node_weight[k]))
             .collect()
     }
 
@@ -950,7 +1031,7 @@ impl super::pair::ContactPair for PointToSegment {
         self.mult_nodes
             .iter()
             .enumerate()
-            .map(|(k, &n)| (n, mu * lam[k] * lam[nm + k]))
+            .map(|(k, &n)| (n, mu * lam[k] * lam[nm + k] / self.node_weight[k]))
             .collect()
     }
     fn friction(&self) -> f64 {
