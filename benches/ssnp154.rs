@@ -1,5 +1,6 @@
-//! SSNP154 end-to-end timings (median of 5 runs each): A–D (A, B also with mortar) on
-//! the reference meshes (../shared/ssnp154, when present) and on the built-in meshes.
+//! SSNP154 end-to-end timings (median of 5 runs each): every validation row (A–F and the
+//! node-to-segment variants) with its own formulation, and A, B with mortar, on the
+//! reference meshes (../shared/ssnp154, when present) and on the built-in meshes.
 //!
 //! Run: `cargo bench --bench ssnp154`
 
@@ -9,40 +10,45 @@ use tribo::case::{self, ssnp154};
 
 fn main() {
     let shared = Path::new("../shared/ssnp154");
-    for formulation in ["point-to-segment", "mortar"] {
-        for (id, quadratic) in [("A", false), ("B", true), ("C", false), ("D", true)] {
-            if formulation == "mortar" && (id == "C" || id == "D") {
-                continue; // no friction with mortar yet
+    let mut runs: Vec<(&str, Option<&str>)> = ssnp154::ROWS.iter().map(|r| (r.id, None)).collect();
+    runs.extend([("A", Some("mortar")), ("B", Some("mortar"))]);
+    for (id, formulation) in runs {
+        let reference = ssnp154::ROWS.iter().find(|r| r.id == id).unwrap().reference;
+        let quadratic = ssnp154::REFERENCES
+            .iter()
+            .find(|r| r.0 == reference)
+            .unwrap()
+            .1;
+        let mut sources = vec![("built-in", ssnp154::builtin_mesh(quadratic, 1.5))];
+        if shared.exists() {
+            let mut spec = ssnp154::builtin_mesh(quadratic, 1.5);
+            spec.generator = None;
+            let file = if quadratic {
+                "ssnp154b.msh"
+            } else {
+                "ssnp154a.msh"
+            };
+            spec.file = Some(shared.join(file).display().to_string());
+            sources.push(("reference", spec));
+        }
+        for (name, spec) in sources {
+            let mut times = vec![];
+            let mut iters = 0;
+            let mut label = String::new();
+            for _ in 0..5 {
+                let t = Instant::now();
+                let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
+                let c = ssnp154::contact_case(id, spec.clone(), formulation);
+                let out = case::run(&c, &mesh, false).unwrap();
+                times.push(t.elapsed().as_secs_f64());
+                iters = out.report.total_iterations;
+                label.clone_from(&c.contact[0].formulation);
             }
-            let mut sources = vec![("built-in", ssnp154::builtin_mesh(quadratic, 1.5))];
-            if shared.exists() {
-                let mut spec = ssnp154::builtin_mesh(quadratic, 1.5);
-                spec.generator = None;
-                let file = if quadratic {
-                    "ssnp154b.msh"
-                } else {
-                    "ssnp154a.msh"
-                };
-                spec.file = Some(shared.join(file).display().to_string());
-                sources.push(("reference", spec));
-            }
-            for (name, spec) in sources {
-                let mut times = vec![];
-                let mut iters = 0;
-                for _ in 0..5 {
-                    let t = Instant::now();
-                    let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
-                    let c = ssnp154::contact_case(id, spec.clone(), Some(formulation));
-                    let out = case::run(&c, &mesh, false).unwrap();
-                    times.push(t.elapsed().as_secs_f64());
-                    iters = out.report.total_iterations;
-                }
-                times.sort_by(f64::total_cmp);
-                println!(
-                    "{id} {formulation:<17} {name:<10} median {:.3} s (min {:.3}), {iters} Newton iterations",
-                    times[2], times[0]
-                );
-            }
+            times.sort_by(f64::total_cmp);
+            println!(
+                "{id:<6} {label:<17} {name:<10} median {:.3} s (min {:.3}), {iters} Newton iterations",
+                times[2], times[0]
+            );
         }
     }
 }

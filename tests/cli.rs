@@ -133,3 +133,55 @@ fn truncated_mesh_names_the_file() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("cut.msh"), "{err}");
 }
+
+#[test]
+fn hertz_study_writes_levels_and_rates() {
+    let d = temp_dir("study");
+    let (json, csv) = (d.join("study.json"), d.join("study.csv"));
+    let out = tribo()
+        .args([
+            "study",
+            "hertz",
+            "--levels",
+            "2",
+            "--linear",
+            "--kinematics",
+            "small",
+        ])
+        .arg("--json")
+        .arg(&json)
+        .arg("--csv")
+        .arg(&csv)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let levels = doc["studies"][0]["levels"].as_array().unwrap();
+    assert_eq!(levels.len(), 2);
+    for l in levels {
+        // coarse levels: the peak within 3 % of Hertz's p0, the half-width within 3 % of a
+        let peak = l["peak_MPa"].as_f64().unwrap();
+        let a = l["half_width_mm"].as_f64().unwrap();
+        assert!((peak / 3585.36 - 1.0).abs() < 0.03, "peak {peak}");
+        assert!((a / 6.2146 - 1.0).abs() < 0.03, "half-width {a}");
+    }
+    // the finer level's pressure profile is closer to Hertz
+    let l2: Vec<f64> = levels
+        .iter()
+        .map(|l| l["l2_error"].as_f64().unwrap())
+        .collect();
+    assert!(l2[1] < l2[0], "{l2:?}");
+    assert_eq!(std::fs::read_to_string(&csv).unwrap().lines().count(), 3);
+    let bad = tribo()
+        .args(["study", "hertz", "--kinematics", "medium"])
+        .output()
+        .unwrap();
+    assert_eq!(bad.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&bad.stderr)
+        .contains("--kinematics 'medium' is not one of small, large, both"));
+}

@@ -8,6 +8,7 @@
 
 mod mesh;
 mod run;
+mod study;
 mod validate;
 
 use crate::error::Result;
@@ -56,6 +57,36 @@ enum Command {
         #[arg(short, long)]
         verbose: bool,
     },
+    /// Refinement studies.
+    Study {
+        #[command(subcommand)]
+        command: StudyCommand,
+    },
+}
+
+#[derive(Subcommand)]
+enum StudyCommand {
+    /// SSNP154 on built-in meshes refined level by level, against the Hertz solution.
+    Hertz {
+        /// Number of levels (element size at the contact 3 mm, halved at each level).
+        #[arg(long, default_value_t = 5)]
+        levels: usize,
+        /// Contact formulation.
+        #[arg(long, default_value = "mortar")]
+        formulation: String,
+        /// Linear cells (default: quadratic).
+        #[arg(long)]
+        linear: bool,
+        /// "small", "large" or "both".
+        #[arg(long, default_value = "both")]
+        kinematics: String,
+        /// Write the results as JSON.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write the levels as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
 }
 
 #[derive(Subcommand)]
@@ -92,5 +123,36 @@ pub fn main() -> Result<i32> {
             formulation.as_deref(),
             verbose,
         ),
+        Command::Study {
+            command:
+                StudyCommand::Hertz {
+                    levels,
+                    formulation,
+                    linear,
+                    kinematics,
+                    json,
+                    csv,
+                },
+        } => {
+            use crate::fem::solid::Kinematics;
+            let kinematics = match kinematics.as_str() {
+                "small" => vec![Kinematics::Small],
+                "large" => vec![Kinematics::Large],
+                "both" => vec![Kinematics::Small, Kinematics::Large],
+                other => {
+                    return Err(crate::error::Error::model(format!(
+                        "study hertz: --kinematics '{other}' is not one of small, large, both"
+                    )))
+                }
+            };
+            study::hertz(&study::Options {
+                levels,
+                formulation: &formulation,
+                quadratic: !linear,
+                kinematics,
+                json: json.as_deref(),
+                csv: csv.as_deref(),
+            })
+        }
     }
 }
