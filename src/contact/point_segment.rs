@@ -119,6 +119,9 @@ pub struct PointToSegment {
     /// any it has been paired with since. The matrix pattern covers all of them, so it only
     /// changes when a point pairs outside this set.
     candidates: Vec<Vec<usize>>,
+    /// Bumped whenever `candidates` grows; the generation whose pattern was last sent.
+    candidates_generation: usize,
+    pattern_sent: std::cell::Cell<Option<usize>>,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
     /// Per multiplier, what turns it into a pressure: 1 for the continuous method (λ is a
@@ -267,6 +270,8 @@ impl PointToSegment {
             master_cells_of_node,
             saved_status: vec![false; n_points],
             candidates,
+            candidates_generation: 0,
+            pattern_sent: std::cell::Cell::new(None),
             u_start: vec![0.0; 2 * mesh.num_nodes()],
             node_weight,
         }
@@ -403,6 +408,7 @@ impl PointToSegment {
                 list.push(m);
             }
         }
+        self.candidates_generation += 1;
     }
 
     /// Geometry of point i at displacement u: projected again on its paired master cell
@@ -666,7 +672,12 @@ impl PointToSegment {
         }
         // The pattern: explicit zeros over every coupling a slave cell may have, so that
         // status and pairing changes within the candidates keep the pattern (and the
-        // symbolic factorisation) unchanged.
+        // symbolic factorisation) unchanged. The matrix keeps a pattern once built, so the
+        // zeros are sent only while the candidates have changed since they were last sent.
+        if self.pattern_sent.get() == Some(self.candidates_generation) {
+            return;
+        }
+        self.pattern_sent.set(Some(self.candidates_generation));
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             let mut dofs: Vec<usize> = vec![];
             for &n in mesh.cell_nodes(sc) {
