@@ -142,3 +142,11 @@ fn node_to_segment_penalty_tends_to_the_multiplier_solution() {
     assert!(d3 > 1e-6 * P, "a soft penalty must differ visibly: {d3}");
     assert!(d5 < d3 / 50.0, "{d3} -> {d5}");
 }
+
+#[test]
+fn mortar_results_are_reproducible_bit_for_bit() {
+    // every sum runs in a fixed order (no hash-map iteration order in the assembly)
+    let a = pressures(CellKind::Quad8, "mortar", "");
+    let b = pressures(CellKind::Quad8, "mortar", "");
+    assert_eq!(a, b);
+}

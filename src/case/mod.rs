@@ -437,7 +437,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                         (a[0] - b[0]).hypot(a[1] - b[1])
                     })
                     .fold(f64::INFINITY, f64::min);
-                pairs.push(Box::new(Mortar::new(
+                let mut mortar = Mortar::new(
                     mesh,
                     slave,
                     master,
@@ -445,7 +445,9 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     case.model.modelisation,
                     case.model.thickness,
                     case.model.kinematics == Kinematics::Small,
-                )));
+                );
+                mortar.initial_gap = c.initial_gap;
+                pairs.push(Box::new(mortar));
                 continue;
             }
             other => {

@@ -44,6 +44,9 @@ pub struct Mortar {
     axisymmetric: bool,
     thickness: f64,
     small: bool,
+    /// Open gaps (along the averaged normal) up to this count as closed at the start;
+    /// None: only touching nodes (1e-6 of the cell size).
+    pub initial_gap: Option<f64>,
 }
 
 /// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
@@ -98,6 +101,7 @@ impl Mortar {
             axisymmetric: model == Modelisation::Axisymmetric,
             thickness,
             small,
+            initial_gap: None,
         };
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
@@ -343,11 +347,24 @@ impl Mortar {
     /// averaged normal, is below 1e-6 of the adjacent slave cell size. (The weighted gap of
     /// a single touching point is positive, so it cannot start the active set.)
     fn touching(&self, mesh: &Mesh, u: &[f64], n: usize) -> bool {
-        let Some(cells) = self.cells_of_node.get(&n) else {
-            return false; // a mid-side node: never the initial support
+        let mid_cells: Vec<usize>;
+        let cells = match self.cells_of_node.get(&n) {
+            Some(c) => c,
+            // a mid-side node: only with an initial gap (a touching point is a corner)
+            None if self.initial_gap.is_some() => {
+                mid_cells = (0..self.slave.cells.len())
+                    .filter(|&ic| mesh.cell_nodes(self.slave.cells[ic]).contains(&n))
+                    .collect();
+                &mid_cells
+            }
+            None => return false,
         };
         let x = Self::pos(mesh, u, n);
-        let nv = self.node_normal(mesh, u, n);
+        let nv = if self.cells_of_node.contains_key(&n) {
+            self.node_normal(mesh, u, n)
+        } else {
+            self.cell_normal(mesh, u, cells[0], 0.0) // mid-side: its cell's normal there
+        };
         for &ic in cells {
             let sn = mesh.cell_nodes(self.slave.cells[ic]);
             let (a, b) = (mesh.coords[sn[0]], mesh.coords[sn[1]]);
@@ -371,7 +388,7 @@ impl Mortar {
                 if xi.abs() <= 1.0 + 1e-9 {
                     let (pm, _) = point_and_tangent(mesh.kind(mc), &xm, xi);
                     let gap = (pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1];
-                    if gap <= 1e-6 * size {
+                    if gap <= self.initial_gap.unwrap_or(1e-6 * size) {
                         return true;
                     }
                 }
@@ -518,7 +535,8 @@ impl ContactPair for Mortar {
             let h = 1e-7 * (1.0 + mesh.coords[dof / 2][dof % 2].abs().max(1.0));
             let mut dg = vec![0.0; nm];
             let mut dd = vec![0.0; nm];
-            let mut df: HashMap<(usize, usize), f64> = HashMap::new();
+            // ordered: the triplets (and the sums of duplicates) come out the same every time
+            let mut df: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
             for (sign, s) in [(1.0, h), (-1.0, -h)] {
                 up[dof] = u[dof] + s;
                 for &ic in &self.readers[&dof] {

@@ -62,6 +62,40 @@ pub fn surface_tractions(
         .collect()
 }
 
+/// A large-displacement contact pressure as it is measured: (deformed x, true pressure)
+/// per slave node. A `nominal` pressure (per initial length: point-to-segment and
+/// node-to-segment weights use the initial slave Jacobian) is multiplied by the surface
+/// stretch, the initial over the deformed distance between the node's neighbours along the
+/// surface (nodes ordered by their initial x); the mortar integrals are on the current
+/// configuration, so its multipliers are true pressures already.
+pub fn deformed_profile(
+    mesh: &Mesh,
+    u: &[f64],
+    pressures: &[(usize, f64)],
+    nominal: bool,
+) -> Vec<(f64, f64)> {
+    let mut pts: Vec<([f64; 2], [f64; 2], f64)> = pressures
+        .iter()
+        .map(|&(n, p)| {
+            let x0 = mesh.coords[n];
+            (x0, [x0[0] + u[2 * n], x0[1] + u[2 * n + 1]], p)
+        })
+        .collect();
+    pts.sort_by(|l, r| l.0[0].total_cmp(&r.0[0]));
+    let dist = |p: [f64; 2], q: [f64; 2]| (p[0] - q[0]).hypot(p[1] - q[1]);
+    (0..pts.len())
+        .map(|i| {
+            let (lo, hi) = (i.saturating_sub(1), (i + 1).min(pts.len() - 1));
+            let stretch = if nominal {
+                dist(pts[hi].0, pts[lo].0) / dist(pts[hi].1, pts[lo].1)
+            } else {
+                1.0
+            };
+            (pts[i].1[0], pts[i].2 * stretch)
+        })
+        .collect()
+}
+
 /// Contact half-width from nodal pressures along a coordinate x ≥ 0 (the pressure vanishing
 /// beyond it): an elliptical (Hertz-shaped) fit p² = A − B x² through the last two loaded
 /// nodes, or the last loaded node's x when that fit is not defined.
