@@ -145,71 +145,52 @@ fn missing_mesh_file_names_it() {
     assert!(e.contains("No such file"), "{e}");
 }
 
+/// The error of GOOD with a [[contact]] table of these lines added.
+fn contact_error(name: &str, lines: &str) -> String {
+    error_of(
+        name,
+        &GOOD.replace("[[force]]", &format!("[[contact]]\n{lines}\n[[force]]")),
+    )
+}
+
 #[test]
 fn bad_contact_entries_are_rejected() {
-    let two = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Top\"\nmaster = \"Top\"\n[[force]]",
-    );
-    let e = error_of("same.toml", &two);
+    let pair = "slave = \"Top\"\nmaster = \"Bottom\"";
     assert_eq!(
-        e,
+        contact_error("same.toml", "slave = \"Top\"\nmaster = \"Top\""),
         "[[contact]] 1 (Top on Top): slave and master must be different groups"
     );
-    let neg = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nfriction = -0.1\n[[force]]",
-    );
-    let e = error_of("mu.toml", &neg);
     assert_eq!(
-        e,
+        contact_error("mu.toml", &format!("{pair}\nfriction = -0.1")),
         "[[contact]] 1 (Top on Bottom): friction must be 0 or positive, got -0.1"
     );
-    let missing = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Arc\"\nmaster = \"Bottom\"\n[[force]]",
-    );
-    let e = error_of("arc.toml", &missing);
+    let e = contact_error("arc.toml", "slave = \"Arc\"\nmaster = \"Bottom\"");
     assert!(e.starts_with("[[contact]] 1 (Arc on Bottom): slave surface: group 'Arc' is not in the mesh; groups are: Body"), "{e}");
-    let pen = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\npenalty = 1e4\n[[force]]",
-    );
-    let e = error_of("pen.toml", &pen);
     assert_eq!(
-        e,
+        contact_error("pen.toml", &format!("{pair}\npenalty = 1e4")),
         "[[contact]] 1 (Top on Bottom): penalty and exclude go with formulation = \"node-to-segment\""
     );
-    let neg_pen = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nformulation = \"node-to-segment\"\npenalty = -3.0\n[[force]]",
-    );
-    let e = error_of("negpen.toml", &neg_pen);
     assert_eq!(
-        e,
+        contact_error(
+            "negpen.toml",
+            &format!("{pair}\nformulation = \"node-to-segment\"\npenalty = -3.0")
+        ),
         "[[contact]] 1 (Top on Bottom): penalty must be positive, got -3"
     );
-    let gap = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\ninitial_gap = 0.1\n[[force]]",
-    );
-    let e = error_of("gap.toml", &gap);
     assert_eq!(
-        e,
+        contact_error("gap.toml", &format!("{pair}\ninitial_gap = 0.1")),
         "[[contact]] 1 (Top on Bottom): initial_gap must be 0 or positive and goes with initial = \"closed\", \
          got 0.1 with initial = \"all\""
     );
-    let mortar = GOOD.replace("[[force]]", "[[contact]]\nslave = \"Top\"\nmaster = \"Bottom\"\nformulation = \"mortar\"\nfriction = 0.2\n[[force]]");
-    let e = error_of("mf.toml", &mortar);
+    let e = contact_error(
+        "mf.toml",
+        &format!("{pair}\nformulation = \"mortar\"\nfriction = 0.2"),
+    );
     assert!(
         e.contains("friction is not available with the mortar formulation yet"),
         "{e}"
     );
-    let point = GOOD.replace(
-        "[[force]]",
-        "[[contact]]\nslave = \"TopLeft\"\nmaster = \"Bottom\"\n[[force]]",
-    );
-    let e = error_of("pt.toml", &point);
+    let e = contact_error("pt.toml", "slave = \"TopLeft\"\nmaster = \"Bottom\"");
     assert!(
         e.contains("holds a Point1 cell; contact surfaces are groups of Seg2/Seg3 edges"),
         "{e}"
