@@ -1,5 +1,5 @@
 //! SSNP154 end-to-end timings (median of 5 runs each): every validation row (A–F and the
-//! node-to-segment variants) with its own formulation, and A, B with mortar, on the
+//! node-to-segment variants) with its own formulation, and A–D with mortar, on the
 //! reference meshes (../shared/ssnp154, when present) and on the built-in meshes.
 //!
 //! Run: `cargo bench --bench ssnp154`
@@ -11,7 +11,7 @@ use tribo::case::{self, ssnp154};
 fn main() {
     let shared = Path::new("../shared/ssnp154");
     let mut runs: Vec<(&str, Option<&str>)> = ssnp154::ROWS.iter().map(|r| (r.id, None)).collect();
-    runs.extend([("A", Some("mortar")), ("B", Some("mortar"))]);
+    runs.extend(["A", "B", "C", "D"].map(|id| (id, Some("mortar"))));
     for (id, formulation) in runs {
         let reference = ssnp154::ROWS.iter().find(|r| r.id == id).unwrap().reference;
         let quadratic = ssnp154::REFERENCES
@@ -38,7 +38,8 @@ fn main() {
             for _ in 0..5 {
                 let t = Instant::now();
                 let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
-                let c = ssnp154::contact_case(id, spec.clone(), formulation);
+                let mut c = ssnp154::contact_case(id, spec.clone(), formulation);
+                ssnp154::choose_mortar_slave(&mut c, &mesh);
                 let out = case::run(&c, &mesh, false).unwrap();
                 times.push(t.elapsed().as_secs_f64());
                 iters = out.report.total_iterations;

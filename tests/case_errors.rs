@@ -182,14 +182,6 @@ fn bad_contact_entries_are_rejected() {
         "[[contact]] 1 (Top on Bottom): initial_gap must be 0 or positive and goes with initial = \"closed\", \
          got 0.1 with initial = \"all\""
     );
-    let e = contact_error(
-        "mf.toml",
-        &format!("{pair}\nformulation = \"mortar\"\nfriction = 0.2"),
-    );
-    assert!(
-        e.contains("friction is not available with the mortar formulation yet"),
-        "{e}"
-    );
     let e = contact_error("pt.toml", "slave = \"TopLeft\"\nmaster = \"Bottom\"");
     assert!(
         e.contains("holds a Point1 cell; contact surfaces are groups of Seg2/Seg3 edges"),

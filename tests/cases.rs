@@ -99,3 +99,54 @@ fn ssnp154_e_case_file() {
 fn ssnp154_f_case_file() {
     run("f.toml", -1.3080923611548, -3502.7937782466);
 }
+
+/// Mortar with Coulomb friction (the C and D set-ups, built-in meshes): the references within
+/// the built-in-mesh tolerance, |t| ≤ μ p at every slave node, the whole load carried.
+#[test]
+fn ssnp154_c_and_d_with_mortar_friction() {
+    use tribo::case::ssnp154;
+    for (id, quadratic, dy_ref, siyy_ref) in [
+        ("C", false, -1.3010795638714, -3670.2561088662),
+        ("D", true, -1.3026356448389, -3542.6878770218),
+    ] {
+        let spec = ssnp154::builtin_mesh(quadratic, 1.5);
+        let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
+        let mut c = ssnp154::contact_case(id, spec, Some("mortar"));
+        ssnp154::choose_mortar_slave(&mut c, &mesh);
+        let out = case::run(&c, &mesh, false).unwrap();
+        let get = |n: &str| out.probes.iter().find(|p| p.0 == n).unwrap().1;
+        let (dy, siyy) = (get("DY_B"), get("SIYY_B"));
+        println!(
+            "{id} mortar: DY_B {dy} ({:+.3} %), SIYY_B {siyy} ({:+.3} %)",
+            100.0 * (dy / dy_ref - 1.0),
+            100.0 * (siyy / siyy_ref - 1.0)
+        );
+        assert!((dy / dy_ref - 1.0).abs() < 0.01, "{id}: DY_B {dy}");
+        assert!((siyy / siyy_ref - 1.0).abs() < 0.01, "{id}: SIYY_B {siyy}");
+        let (mu, shear) = &out.contact_shear[0];
+        assert!((mu - 0.1).abs() < 1e-15 && !shear.is_empty());
+        let pressure: std::collections::HashMap<usize, f64> =
+            out.contact_pressure[0].iter().copied().collect();
+        let mut slipping = 0;
+        for &(n, t) in shear {
+            let p = pressure[&n];
+            assert!(
+                t.abs() <= mu * p.max(0.0) * (1.0 + 1e-6) + 1e-9,
+                "{id}: node {n}: |t| = {} > mu p = {}",
+                t.abs(),
+                mu * p
+            );
+            if p > 0.0 && t.abs() > mu * p * (1.0 - 1e-6) {
+                slipping += 1;
+            }
+        }
+        assert!(slipping > 0, "{id}: some nodes slip");
+        let ry: f64 = mesh
+            .node_group("Encast")
+            .unwrap()
+            .iter()
+            .map(|&n| out.reactions[2 * n + 1])
+            .sum();
+        assert!((ry - 17500.0).abs() < 1e-6 * 17500.0, "{id}: reaction {ry}");
+    }
+}

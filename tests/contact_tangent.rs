@@ -80,8 +80,10 @@ fn check_with(kind: CellKind, formulation: &str, extra: &str, tolerance: f64) {
         n - nf
     };
     for (k, v) in x[nf..].iter_mut().enumerate() {
+        // mortar multipliers are pressures (> 0), the others λ < 0 in compression
+        let sign = if formulation == "mortar" { -1.0 } else { 1.0 };
         *v = if k < n_normal {
-            -50.0 - 7.0 * (k as f64).sin()
+            sign * (-50.0 - 7.0 * (k as f64).sin())
         } else {
             0.9 * (1.7 * k as f64).sin()
         };
@@ -141,4 +143,12 @@ fn frictional_tangent_matches_finite_differences() {
     check_with(CellKind::Quad4, "point-to-segment", nodal, 1e-6);
     check_with(CellKind::Quad8, "point-to-segment", nodal, 1e-6);
     check_with(CellKind::Quad8, "node-to-segment", "friction = 0.3", 1e-6);
+}
+
+/// Mortar with Coulomb friction: stick and slip nodes; the geometry derivatives are central
+/// differences (step 1e-7), checked here with another step.
+#[test]
+fn mortar_frictional_tangent_matches_finite_differences() {
+    check_with(CellKind::Quad4, "mortar", "friction = 0.3", 1e-5);
+    check_with(CellKind::Quad8, "mortar", "friction = 0.3", 1e-5);
 }

@@ -416,11 +416,6 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         }
         match c.formulation.as_str() {
             "point-to-segment" | "node-to-segment" => {}
-            "mortar" if c.friction > 0.0 => {
-                return Err(Error::model(format!(
-                    "{what}: friction is not available with the mortar formulation yet; use point-to-segment"
-                )))
-            }
             "mortar" => {
                 // complementarity parameter: stiffest-scale E over the shortest slave cell
                 let e_min = case
@@ -447,6 +442,17 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     case.model.kinematics == Kinematics::Small,
                 );
                 mortar.initial_gap = c.initial_gap;
+                if c.friction > 0.0 {
+                    mortar.friction = Some(c.friction);
+                    for g in &c.friction_exclude {
+                        let nodes = mesh
+                            .node_group(g)
+                            .map_err(|e| Error::model(format!("{what}: friction_exclude: {e}")))?;
+                        mortar.friction_excluded.extend(
+                            nodes.iter().filter_map(|n| mortar.mult_nodes.iter().position(|m| m == n)),
+                        );
+                    }
+                }
                 pairs.push(Box::new(mortar));
                 continue;
             }

@@ -15,6 +15,10 @@
 //! with respect to the displacements are taken by central finite differences, cell by
 //! cell (each perturbed dof only re-evaluates the slave cells that read it). They contain
 //! every geometric variation (normals, segment ends, projections, Jacobians) to ~1e-8.
+//!
+//! Coulomb friction: tangential multipliers t_j (tractions) on the same dual basis, weighted
+//! slips s̃_j = ∫ Φ_j (Δu_s − Δu_m)·τ̂ since the step start, and per node no friction
+//! (t_j = 0), stick (s̃_j = 0) or slip (t_j = μ λ_j sign(t_j + c s̃_j / D_j)).
 
 use super::pair::ContactPair;
 use super::point_segment::initial_candidates;
@@ -47,6 +51,12 @@ pub struct Mortar {
     /// Open gaps (along the averaged normal) up to this count as closed at the start;
     /// None: only touching nodes (1e-6 of the cell size).
     pub initial_gap: Option<f64>,
+    /// Coulomb coefficient (None: frictionless), and the multiplier indices of the slave
+    /// nodes excluded from friction.
+    pub friction: Option<f64>,
+    pub friction_excluded: Vec<usize>,
+    /// Displacement at the start of the load step (slips are measured from it).
+    u_start: Vec<f64>,
 }
 
 /// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
@@ -58,6 +68,10 @@ struct CellTerms {
     /// ∫ N_j over the parts of the cell that face the master surface
     cover: Vec<(usize, f64)>,
     force: Vec<(usize, usize, f64)>,
+    /// With friction: weighted slips s̃_j = ∫ Φ_j (Δu_s − Δu_m)·τ̂ since the step start,
+    /// and tangential force coefficients per unit traction t_j.
+    slip: Vec<(usize, f64)>,
+    tforce: Vec<(usize, usize, f64)>,
 }
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -102,6 +116,9 @@ impl Mortar {
             thickness,
             small,
             initial_gap: None,
+            friction: None,
+            friction_excluded: vec![],
+            u_start: vec![0.0; 2 * mesh.num_nodes()],
         };
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
@@ -320,6 +337,22 @@ impl Mortar {
                 let w = gw[q] * 0.5 * (hi - lo) * t[0].hypot(t[1]) * self.measure(p);
                 let mut nm = [0.0; MAX_NODES];
                 shape(mkind, [xim, 0.0], &mut nm);
+                // slip since the step start along τ̂ (slave relative to master)
+                let tau = [-nhat[1], nhat[0]];
+                let slip = if self.friction.is_some() {
+                    let mut rel = [0.0; 2];
+                    for c in 0..2 {
+                        for (a, &n) in snodes.iter().enumerate() {
+                            rel[c] += nv[a] * (u[2 * n + c] - self.u_start[2 * n + c]);
+                        }
+                        for (b, &n) in mnodes.iter().enumerate() {
+                            rel[c] -= nm[b] * (u[2 * n + c] - self.u_start[2 * n + c]);
+                        }
+                    }
+                    rel[0] * tau[0] + rel[1] * tau[1]
+                } else {
+                    0.0
+                };
                 for j in 0..nn {
                     let phi: f64 = (0..nn).map(|b| amat[j][b] * nv[b]).sum();
                     let k = self.mult_of[&snodes[j]];
@@ -335,6 +368,24 @@ impl Mortar {
                         for comp in 0..2 {
                             out.force
                                 .push((k, 2 * mn + comp, -w * phi * nm[b] * nhat[comp]));
+                        }
+                    }
+                    if self.friction.is_some() {
+                        out.slip.push((k, w * phi * slip));
+                        for a in 0..nn {
+                            for comp in 0..2 {
+                                out.tforce.push((
+                                    k,
+                                    2 * snodes[a] + comp,
+                                    w * phi * nv[a] * tau[comp],
+                                ));
+                            }
+                        }
+                        for (b, &mn) in mnodes.iter().enumerate() {
+                            for comp in 0..2 {
+                                out.tforce
+                                    .push((k, 2 * mn + comp, -w * phi * nm[b] * tau[comp]));
+                            }
                         }
                     }
                 }
@@ -459,7 +510,7 @@ fn invert(m: &[[f64; 3]; 3], n: usize) -> [[f64; 3]; 3] {
 
 impl ContactPair for Mortar {
     fn num_multipliers(&self) -> usize {
-        self.mult_nodes.len()
+        self.mult_nodes.len() * if self.friction.is_some() { 2 } else { 1 }
     }
 
     fn initialise(&mut self, mesh: &Mesh) {
@@ -527,6 +578,52 @@ impl ContactPair for Mortar {
                 k.add(ndof + mult_base + j, ndof + mult_base + j, -d[j] / self.c);
             }
         }
+        // Coulomb friction per slave node (semi-smooth, decided from the iterate): with the
+        // traction t_j and the trial t_j + c s̃_j / D_j, no contact (or no pressure): t_j = 0;
+        // stick (|trial| ≤ μ λ_j): s̃_j = 0; slip: t_j = μ λ_j sign(trial). Rows scaled by
+        // D_j / c like the normal ones.
+        let mut sl = vec![0.0; nm];
+        // per node: 0 no friction, 1 stick, 2 slip; the sign of the trial
+        let mut law = vec![(0u8, 0.0f64); nm];
+        if let Some(mu) = self.friction {
+            let mut tf: Vec<Vec<(usize, f64)>> = vec![vec![]; nm];
+            for t in &terms {
+                for &(j, v) in &t.slip {
+                    sl[j] += v;
+                }
+                for &(j, dof, v) in &t.tforce {
+                    tf[j].push((dof, v));
+                }
+            }
+            let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for j in 0..nm {
+                let tj = lam[nm + j];
+                let row = ndof + mult_base + nm + j;
+                for &(dof, v) in &tf[j] {
+                    ru[dof] += tj * v;
+                    k.add(dof, row, v);
+                }
+                let pressure = lam[j];
+                if !self.active[j] || self.friction_excluded.contains(&j) || pressure <= 1e-8 * lmax
+                {
+                    rl[nm + j] += -tj * d[j] / self.c;
+                    k.add(row, row, -d[j] / self.c);
+                    continue;
+                }
+                let trial = tj + self.c * sl[j] / d[j];
+                if trial.abs() <= mu * pressure {
+                    law[j] = (1, 0.0);
+                    rl[nm + j] += -sl[j];
+                } else {
+                    let sg = trial.signum();
+                    law[j] = (2, sg);
+                    let scale = d[j] / self.c;
+                    rl[nm + j] += -(tj - mu * pressure * sg) * scale;
+                    k.add(row, row, -scale);
+                    k.add(row, ndof + mult_base + j, mu * sg * scale);
+                }
+            }
+        }
         // u-derivatives by central differences, cell by cell.
         let mut up = u.to_vec();
         let mut dofs: Vec<usize> = self.readers.keys().copied().collect();
@@ -537,6 +634,8 @@ impl ContactPair for Mortar {
             let mut dd = vec![0.0; nm];
             // ordered: the triplets (and the sums of duplicates) come out the same every time
             let mut df: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
+            let mut ds = vec![0.0; nm];
+            let mut dtf: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
             for (sign, s) in [(1.0, h), (-1.0, -h)] {
                 up[dof] = u[dof] + s;
                 for &ic in &self.readers[&dof] {
@@ -550,9 +649,31 @@ impl ContactPair for Mortar {
                     for (j, row, v) in t.force {
                         *df.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
                     }
+                    for (j, v) in t.slip {
+                        ds[j] += sign * v / (2.0 * h);
+                    }
+                    for (j, row, v) in t.tforce {
+                        *dtf.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
+                    }
                 }
             }
             up[dof] = u[dof];
+            if let Some(mu) = self.friction {
+                for ((j, row), v) in dtf {
+                    k.add(row, dof, lam[nm + j] * v);
+                }
+                for j in 0..nm {
+                    let row = ndof + mult_base + nm + j;
+                    let v = match law[j] {
+                        (1, _) => -ds[j],
+                        (2, sg) => -(lam[nm + j] - mu * lam[j] * sg) / self.c * dd[j],
+                        _ => -lam[nm + j] / self.c * dd[j],
+                    };
+                    if v != 0.0 {
+                        k.add(row, dof, v);
+                    }
+                }
+            }
             for ((j, row), v) in df {
                 let aug = if self.active[j] {
                     -self.c * g[j] / d[j]
@@ -587,11 +708,15 @@ impl ContactPair for Mortar {
         // pattern: every reader dof couples with every dof and multiplier of its cells
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             let nodes = self.nodes_read(mesh, ic);
-            let mults: Vec<usize> = mesh
+            let mut mults: Vec<usize> = mesh
                 .cell_nodes(sc)
                 .iter()
                 .map(|n| ndof + mult_base + self.mult_of[n])
                 .collect();
+            if self.friction.is_some() {
+                let tangential: Vec<usize> = mults.iter().map(|m| m + nm).collect();
+                mults.extend(tangential);
+            }
             let mut all: Vec<usize> = nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
             all.extend_from_slice(&mults);
             for &r in &all {
@@ -615,8 +740,9 @@ impl ContactPair for Mortar {
         changes
     }
 
-    fn commit(&mut self, _u: &[f64]) {
+    fn commit(&mut self, u: &[f64]) {
         self.saved = self.active.clone();
+        self.u_start.copy_from_slice(u);
     }
 
     fn restore(&mut self) {
@@ -633,5 +759,17 @@ impl ContactPair for Mortar {
             .enumerate()
             .map(|(k, &n)| (n, lam[k]))
             .collect()
+    }
+
+    fn nodal_shear(&self, lam: &[f64]) -> Vec<(usize, f64)> {
+        let nm = self.mult_nodes.len();
+        match self.friction {
+            Some(_) => (0..nm).map(|k| (self.mult_nodes[k], lam[nm + k])).collect(),
+            None => vec![],
+        }
+    }
+
+    fn friction(&self) -> f64 {
+        self.friction.unwrap_or(0.0)
     }
 }
