@@ -905,7 +905,7 @@ impl PointToSegment {
         // Friction needs a pressure: a point with (numerically) no normal multiplier gets the
         // "no contact" row, as an exactly zero λ does in the reference, so that the slip row
         // μ λ (Λ − sign t) / ρ_f never degenerates.
-        if !fp.chi || lp > -fp.lambda_floor {
+        if !fp.chi || lp >= -fp.lambda_floor {
             for &(m, nv) in &fm {
                 rl[m] += w * big_l * nv;
                 for &(m2, n2) in &fm {
