@@ -337,6 +337,18 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
 }
 
 /// The contact pairs of a case.
+/// The nodes of the node groups listed under `key` of a contact entry.
+fn group_nodes(mesh: &Mesh, groups: &[String], what: &str, key: &str) -> Result<Vec<usize>> {
+    let mut nodes = vec![];
+    for g in groups {
+        nodes.extend(
+            mesh.node_group(g)
+                .map_err(|e| Error::model(format!("{what}: {key}: {e}")))?,
+        );
+    }
+    Ok(nodes)
+}
+
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
     for (i, c) in case.contact.iter().enumerate() {
@@ -444,14 +456,11 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 mortar.initial_gap = c.initial_gap;
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
-                    for g in &c.friction_exclude {
-                        let nodes = mesh
-                            .node_group(g)
-                            .map_err(|e| Error::model(format!("{what}: friction_exclude: {e}")))?;
-                        mortar.friction_excluded.extend(
-                            nodes.iter().filter_map(|n| mortar.mult_nodes.iter().position(|m| m == n)),
-                        );
-                    }
+                    let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
+                    mortar.friction_excluded = nodes
+                        .iter()
+                        .filter_map(|n| mortar.mult_nodes.iter().position(|m| m == n))
+                        .collect();
                 }
                 pairs.push(Box::new(mortar));
                 continue;
@@ -462,20 +471,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 )))
             }
         }
-        let mut friction_excluded = vec![];
-        for g in &c.friction_exclude {
-            friction_excluded.extend(
-                mesh.node_group(g)
-                    .map_err(|e| Error::model(format!("{what}: friction_exclude: {e}")))?,
-            );
-        }
-        let mut contact_excluded = vec![];
-        for g in &c.exclude {
-            contact_excluded.extend(
-                mesh.node_group(g)
-                    .map_err(|e| Error::model(format!("{what}: exclude: {e}")))?,
-            );
-        }
+        let friction_excluded = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
+        let contact_excluded = group_nodes(mesh, &c.exclude, &what, "exclude")?;
         let opts = point_segment::Options {
             integration,
             node_to_segment,

@@ -259,7 +259,7 @@ pub struct ContactSpec {
     /// With initial = "closed": open gaps up to this distance count as closed at the start.
     #[serde(default)]
     pub initial_gap: Option<f64>,
-    /// Coulomb friction coefficient (0: frictionless). point-to-segment only for now.
+    /// Coulomb friction coefficient (0: frictionless).
     #[serde(default)]
     pub friction: f64,
     /// Friction augmentation coefficient (1 / length).

@@ -148,7 +148,7 @@ const fn row(id: &'static str, reference: &'static str, what: &'static str) -> R
     }
 }
 
-/// Whether a row uses friction (not available with mortar) or is a node-to-segment set-up.
+/// Whether a row uses friction, and whether it is a node-to-segment set-up.
 pub fn row_kind(id: &str) -> (bool, bool) {
     let friction = matches!(id, "C" | "D" | "D-nts");
     let node_to_segment = matches!(id, "E" | "F" | "E-free" | "F-free" | "D-nts");
@@ -207,8 +207,6 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         let k = c.contact.last_mut().unwrap();
         k.friction = 0.1;
         k.integration = "nodal".into();
-        k.initial = "closed".into();
-        k.initial_gap = Some(0.1);
         k.friction_exclude = vec!["C".into()];
     }
     c

@@ -185,8 +185,9 @@ impl PointToSegment {
             _ => thickness,
         };
         let mut points = vec![];
-        // the nodal rule (trapezoid / Simpson) gives each node its share of the surface
-        let mut node_weight = vec![0.0; mult_nodes.len()];
+        // node-to-segment: the nodal rule (trapezoid / Simpson) gives each node its share of
+        // the surface; the continuous method's multipliers are pressures already
+        let mut node_weight = vec![if opts.node_to_segment { 0.0 } else { 1.0 }; mult_nodes.len()];
         for (ic, &c) in slave.cells.iter().enumerate() {
             let kind = mesh.kind(c);
             let x0: Vec<[f64; 2]> = mesh.cell_nodes(c).iter().map(|&n| mesh.coords[n]).collect();
@@ -195,12 +196,12 @@ impl PointToSegment {
             } else {
                 vec![(-1.0, 1.0), (1.0, 1.0)]
             };
-            for (a, &(xi, w)) in nodal.iter().enumerate() {
-                let (p, t) = point_and_tangent(kind, &x0, xi);
-                node_weight[mult_of[&mesh.cell_nodes(c)[a]]] +=
-                    w * t[0].hypot(t[1]) * measure_at(p);
-            }
             if opts.node_to_segment {
+                for (a, &(xi, w)) in nodal.iter().enumerate() {
+                    let (p, t) = point_and_tangent(kind, &x0, xi);
+                    node_weight[mult_of[&mesh.cell_nodes(c)[a]]] +=
+                        w * t[0].hypot(t[1]) * measure_at(p);
+                }
                 continue;
             }
             let rule: Vec<(f64, f64)> = match opts.integration {
@@ -249,8 +250,6 @@ impl PointToSegment {
                     xi_m: 0.0,
                 });
             }
-        } else {
-            node_weight.iter_mut().for_each(|w| *w = 1.0);
         }
         let mut master_cells_of_node: HashMap<usize, Vec<usize>> = HashMap::new();
         for (im, &c) in master.cells.iter().enumerate() {
@@ -762,6 +761,7 @@ impl PointToSegment {
         &self,
         fp: &FrictionPoint,
         u: &[f64],
+        tv: &[(usize, f64)],
         cxi: &[(usize, f64)],
         cn: &[(usize, f64)],
         t: f64,
@@ -798,8 +798,7 @@ impl PointToSegment {
         let q = friction::traction(mu, lp, t, law); // μ λ t (stick) or μ λ sign(t) (slip)
         if law == friction::State::Stick {
             // q = μ λ (Λ + ρ_f Δw): the force on the dofs T and the stick rows −μ λ Δw
-            let tv = self.friction_direction(fp);
-            for &(d, v) in &tv {
+            for &(d, v) in tv {
                 for &(col, gv) in &g_dw {
                     k.add(d, col, -w * mu * lp * self.opts.rho_f * v * gv);
                 }
@@ -828,23 +827,6 @@ impl PointToSegment {
                 }
             }
         }
-    }
-
-    /// T over dofs: slave N_s τ, master −N_m τ.
-    fn friction_direction(&self, fp: &FrictionPoint) -> Vec<(usize, f64)> {
-        let e = fp.e;
-        let mut tv = vec![];
-        for (a, &n) in fp.snodes.iter().enumerate() {
-            for c in 0..2 {
-                tv.push((2 * n + c, e.ns[a] * e.tau[c]));
-            }
-        }
-        for (b, &n) in fp.mnodes.iter().enumerate() {
-            for c in 0..2 {
-                tv.push((2 * n + c, -e.nm[b] * e.tau[c]));
-            }
-        }
-        tv
     }
 
     /// Coulomb friction at one contact point (contact.md §1.8): with the semi-multiplier
@@ -916,7 +898,7 @@ impl PointToSegment {
         }
         let (t, law) = friction::state(big_l, dw, rho_f);
         if let Some((cxi, cn)) = fp.geo {
-            self.friction_geometry(fp, u, cxi, cn, t, law, k, &fm, mbase);
+            self.friction_geometry(fp, u, &tv, cxi, cn, t, law, k, &fm, mbase);
         }
         if law == friction::State::Stick {
             let q = friction::traction(mu, lp, t, law); // μ λ t

@@ -280,10 +280,7 @@ mod tests {
     fn saddle_point_system_is_solved_exactly_and_refactorised() {
         let (n, m) = (40, 5);
         let mut a = saddle(n, m);
-        let transpose: Vec<usize> = (0..a.n)
-            .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (p, c)))
-            .map(|(p, c)| a.position(c, a.row_idx[p]).unwrap())
-            .collect();
+        let transpose = crate::solver::linear::transpose_positions(&a);
         let mut f = SaddleLdlt::new(&a, n).unwrap();
         for shift in [0.0, 1.0] {
             for c in 0..n {

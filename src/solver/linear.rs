@@ -37,11 +37,10 @@ pub struct LinearSolver {
     exact: SparseMatrix,
     transpose: Vec<usize>,
     /// GMRES iterations done in the last solve (SaddleLdlt).
-    pub refinement_steps: usize,
-    /// SaddleLdlt: GMRES failed on this problem's tangent; LU is used from then on.
+    pub gmres_iterations: usize,
+    /// SaddleLdlt: the symmetric part could not serve (not structurally symmetric, a zero
+    /// pivot, GMRES stalled); LU of the exact matrix is used from then on.
     lu_fallback: bool,
-    /// Solves that fell back to LU (for reports).
-    pub lu_fallbacks: usize,
 }
 
 impl LinearSolver {
@@ -59,9 +58,8 @@ impl LinearSolver {
             symbolic_count: 0,
             exact: SparseMatrix::default(),
             transpose: vec![],
-            refinement_steps: 0,
+            gmres_iterations: 0,
             lu_fallback: false,
-            lu_fallbacks: 0,
         }
     }
 
@@ -122,7 +120,6 @@ impl LinearSolver {
                     // A zero pivot of the symmetric part (possible when the tangent is not
                     // symmetric): LU of the exact matrix decides whether it is singular.
                     self.lu_fallback = true;
-                    self.lu_fallbacks += 1;
                     self.ldlt = None;
                     return self.factor_lu(a);
                 }
@@ -148,6 +145,14 @@ impl LinearSolver {
         Ok(())
     }
 
+    fn solve_lu(&self, b: &mut [f64]) {
+        let n = b.len();
+        self.lu
+            .as_ref()
+            .expect("factor before solve")
+            .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
+    }
+
     /// Solves in place with the last factorisation; fails on a non-finite result.
     pub fn solve(&mut self, b: &mut [f64]) -> Result<()> {
         let n = b.len();
@@ -157,16 +162,8 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt if self.lu_fallback => self
-                .lu
-                .as_ref()
-                .expect("factor before solve")
-                .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::Lu => self
-                .lu
-                .as_ref()
-                .expect("factor before solve")
-                .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
+            Method::SaddleLdlt if self.lu_fallback => self.solve_lu(b),
+            Method::Lu => self.solve_lu(b),
             Method::SaddleLdlt => self.solve_iterative(b)?,
         }
         if b.iter().any(|v| !v.is_finite()) {
@@ -199,22 +196,17 @@ impl LinearSolver {
         );
         match result {
             Ok(its) => {
-                self.refinement_steps = its;
+                self.gmres_iterations = its;
                 Ok(())
             }
             Err(_) => {
                 self.lu_fallback = true;
-                self.lu_fallbacks += 1;
                 let exact = std::mem::take(&mut self.exact);
                 let factored = self.factor_lu(&exact);
                 self.exact = exact;
                 factored?;
                 b.copy_from_slice(&rhs);
-                let n = b.len();
-                self.lu
-                    .as_ref()
-                    .expect("factorised above")
-                    .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
+                self.solve_lu(b);
                 Ok(())
             }
         }
