@@ -69,3 +69,95 @@ pub fn info(path: &Path, as_json: bool) -> Result<i32> {
     }
     Ok(0)
 }
+
+/// Output format of `tribo mesh convert`, from `--format` or the extension of OUT.
+fn output_format(out: &Path, format: Option<&str>) -> Result<&'static str> {
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(|e| e.to_ascii_lowercase());
+    let f = match (format, ext.as_deref()) {
+        (Some("msh41" | "msh"), _) | (None, Some("msh")) => "msh41",
+        (Some("msh22"), _) => "msh22",
+        (Some("med"), _) | (None, Some("med" | "mmed")) => "med",
+        (Some("vtu"), _) | (None, Some("vtu")) => "vtu",
+        (Some(other), _) => {
+            return Err(crate::error::Error::model(format!(
+                "mesh convert: --format '{other}' is not one of msh41, msh22, med, vtu"
+            )))
+        }
+        (None, _) => {
+            return Err(crate::error::Error::model(format!(
+                "mesh convert: cannot tell the output format of '{}' from its extension \
+                 (.msh, .med, .mmed, .vtu); give --format msh41|msh22|med|vtu",
+                out.display()
+            )))
+        }
+    };
+    Ok(f)
+}
+
+/// `tribo mesh convert IN OUT [--format F]`
+pub fn convert(input: &Path, output: &Path, format: Option<&str>) -> Result<i32> {
+    use crate::mesh::gmsh_write::{self, MshVersion};
+    let fmt = output_format(output, format)?;
+    let mesh = crate::mesh::read(input)?;
+    match fmt {
+        "msh41" => gmsh_write::write(output, &mesh, MshVersion::V41)?,
+        "msh22" => gmsh_write::write(output, &mesh, MshVersion::V22)?,
+        "med" => {
+            let name = input.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
+            crate::mesh::med_write::write(output, &mesh, name)?
+        }
+        _ => crate::post::vtu::write_mesh(output, &mesh)?,
+    }
+    let groups = mesh.group_names().len();
+    println!(
+        "{} -> {} ({fmt}): {} nodes, {} cells, {groups} groups",
+        input.display(),
+        output.display(),
+        mesh.num_nodes(),
+        mesh.num_cells()
+    );
+    if fmt.starts_with("msh")
+        && (0..mesh.num_cells())
+            .any(|c| mesh.kind(c).dim() == 2 && !mesh.cell_groups.values().any(|g| g.contains(&c)))
+    {
+        println!(
+            "note: 2D cells in no group were put in the group '{}' (Gmsh drops ungrouped cells)",
+            crate::mesh::gmsh_write::UNGROUPED
+        );
+    }
+    Ok(0)
+}
+
+/// `tribo mesh compare A B [--tol T]`: exit status 0 when the meshes are the same.
+pub fn compare(a: &Path, b: &Path, tol: f64) -> Result<i32> {
+    let ma = crate::mesh::read(a)?;
+    let mb = crate::mesh::read(b)?;
+    let c = crate::mesh::compare::compare(&ma, &mb, tol);
+    let counts = |m: &crate::mesh::Mesh| -> String {
+        crate::mesh::compare::compared_counts(m)
+            .iter()
+            .map(|(k, v)| format!("{v} {}", k.name()))
+            .collect::<Vec<_>>()
+            .join(", ")
+    };
+    println!("{}: {} nodes; {}", a.display(), ma.num_nodes(), counts(&ma));
+    println!("{}: {} nodes; {}", b.display(), mb.num_nodes(), counts(&mb));
+    println!("groups: {}", ma.group_names().join(", "));
+    println!(
+        "largest node distance {:.3e} (tolerance {tol:e} of the bounding-box diagonal), numbering {}",
+        c.max_node_distance,
+        if c.same_numbering { "identical" } else { "different" }
+    );
+    if c.differences.is_empty() {
+        println!("same mesh");
+        Ok(0)
+    } else {
+        for d in &c.differences {
+            println!("DIFFERENT: {d}");
+        }
+        Ok(1)
+    }
+}

@@ -3,7 +3,7 @@
 //! | file | what |
 //! |---|---|
 //! | `run.rs` | `tribo run CASE.toml [-o DIR]` |
-//! | `mesh.rs` | `tribo mesh info FILE [--json]` |
+//! | `mesh.rs` | `tribo mesh info`, `mesh convert`, `mesh compare` |
 //! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
 
 mod mesh;
@@ -92,11 +92,28 @@ enum StudyCommand {
 #[derive(Subcommand)]
 enum MeshCommand {
     /// Counts per cell kind, groups, bounding box, orientation fixes and quality
-    /// (FILE: a .msh mesh, or a .toml case whose [mesh] is shown).
+    /// (FILE: a .msh or .med mesh, or a .toml case whose [mesh] is shown).
     Info {
         file: PathBuf,
         #[arg(long)]
         json: bool,
+    },
+    /// Converts a mesh between Gmsh MSH 4.1 / 2.2, MED and VTU, keeping its groups.
+    Convert {
+        input: PathBuf,
+        output: PathBuf,
+        /// msh41, msh22, med or vtu (default: from the extension of OUTPUT).
+        #[arg(long)]
+        format: Option<String>,
+    },
+    /// Compares two meshes (any readable format): nodes, cells and groups.
+    /// Exit status 0 when they are the same.
+    Compare {
+        first: PathBuf,
+        second: PathBuf,
+        /// Node distance tolerance, relative to the bounding-box diagonal.
+        #[arg(long, default_value_t = 1e-12)]
+        tol: f64,
     },
 }
 
@@ -112,6 +129,17 @@ pub fn main() -> Result<i32> {
         Command::Mesh {
             command: MeshCommand::Info { file, json },
         } => mesh::info(&file, json),
+        Command::Mesh {
+            command:
+                MeshCommand::Convert {
+                    input,
+                    output,
+                    format,
+                },
+        } => mesh::convert(&input, &output, format.as_deref()),
+        Command::Mesh {
+            command: MeshCommand::Compare { first, second, tol },
+        } => mesh::compare(&first, &second, tol),
         Command::Validate {
             meshes,
             json,

@@ -248,18 +248,7 @@ pub fn write_vtu(path: &Path, mesh: &Mesh, outcome: &case::Outcome) -> Result<()
         cp[n] = p;
         status[n] = if p > 1e-9 * pmax { 1.0 } else { 0.0 };
     }
-    let mut group_fields = vec![];
-    for (name, members) in &mesh.cell_groups {
-        if mesh.group_dim(name) != Some(2) {
-            continue;
-        }
-        let mut flag = vec![0i32; mesh.num_cells()];
-        for &c in members {
-            flag[c] = 1;
-        }
-        let vals: Vec<i32> = cells.iter().map(|&c| flag[c]).collect();
-        group_fields.push((format!("group_{name}"), vals));
-    }
+    let group_fields = vtu::cell_group_flags(mesh, &cells);
     let mut fields = vec![
         Field::Point {
             name: "displacement",

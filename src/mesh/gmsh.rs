@@ -10,9 +10,11 @@
 //! - z is dropped, but a node with |z| > 1e-12 × (bounding-box diagonal) is an error.
 //! - Groups: each physical group of an element (4.1: the physical tags of its entity in
 //!   `$Entities`; 2.2: its first tag) puts the cell in the cell group named in
-//!   `$PhysicalNames`; a physical group without a name is an error. When the file defines
-//!   physical groups, elements outside all of them are dropped (as Gmsh does); their nodes
-//!   stay. A file without any physical group keeps all its elements, in no group.
+//!   `$PhysicalNames`; a physical group without a name is an error. A 2.2 element
+//!   repeated with the same number (Gmsh's way to put it in several groups) is one cell.
+//!   When the file defines physical groups, elements outside all of them are dropped (as
+//!   Gmsh does); their nodes stay. A file without any physical group keeps all its
+//!   elements, in no group.
 //! - Errors name the place: `file:line` in ASCII files, `file (byte N)` in binary ones,
 //!   just `file` for problems of the whole file. Malformed input never panics; counts
 //!   read from the file never size an allocation beyond what the remaining bytes can hold.
@@ -923,6 +925,7 @@ impl<'a> Parser<'a> {
         } = self;
         let entities = entities.unwrap_or_default();
         let mut groups: Vec<&str> = Vec::new();
+        let mut seen: HashMap<u64, usize> = HashMap::new();
         for b in &blocks {
             let physical: &[i64] = if v41 {
                 entities.get(&(b.dim, b.key)).map_or(&[], |p| p.as_slice())
@@ -952,7 +955,26 @@ impl<'a> Parser<'a> {
             let n = b.kind.num_nodes();
             for i in 0..b.count {
                 let s = b.conn_start + i * n;
-                let c = builder.add_cell(b.kind, &conn[s..s + n], labels[b.label_start + i]);
+                let label = labels[b.label_start + i];
+                // MSH 2.2 repeats an element once per physical group, with one number.
+                let c = match seen.get(&label) {
+                    Some(&c) if !v41 => {
+                        if builder.cell(c) != (b.kind, &conn[s..s + n]) {
+                            return Err(Error::parse(
+                                source,
+                                format!("element {label} is defined twice with different nodes"),
+                            ));
+                        }
+                        c
+                    }
+                    _ => {
+                        let c = builder.add_cell(b.kind, &conn[s..s + n], label);
+                        if !v41 {
+                            seen.insert(label, c);
+                        }
+                        c
+                    }
+                };
                 for g in &groups {
                     builder.add_to_cell_group(g, c);
                 }

@@ -7,6 +7,10 @@
 //! | `topology.rs` | edge → parent cell adjacency, outward orientation |
 //! | `quality.rs` | min angle, max aspect ratio, bounding box |
 //! | `gmsh.rs` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
+//! | `med.rs` | MED (HDF5) mesh reader |
+//! | `gmsh_write.rs`, `med_write.rs` | MSH 4.1/2.2 and MED writers (`tribo mesh convert`) |
+//! | `families.rs` | entities partitioned by their set of groups (for the writers) |
+//! | `compare.rs` | are two meshes the same (nodes, cells, groups)? |
 //! | `quadtree.rs` | balanced quadtree → conforming graded quad/triangle cells |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
 //!
@@ -15,8 +19,13 @@
 
 mod builder;
 pub mod cell;
+pub mod compare;
+mod families;
 pub mod generate;
 pub mod gmsh;
+pub mod gmsh_write;
+pub mod med;
+pub mod med_write;
 pub mod quadtree;
 pub mod quality;
 pub mod topology;
@@ -166,17 +175,52 @@ impl Mesh {
     }
 }
 
-/// Reads a mesh file, choosing the reader by extension.
+/// Reads a mesh file: Gmsh `.msh` or MED `.med`/`.mmed`, by extension, or by content
+/// when the extension is neither (an HDF5 signature means MED, `$MeshFormat` Gmsh).
 pub fn read(path: &std::path::Path) -> Result<Mesh> {
-    match path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(|e| e.to_ascii_lowercase())
-    {
-        Some(e) if e == "msh" => gmsh::read(path),
-        _ => Err(Error::model(format!(
-            "{}: unknown mesh format; supported: Gmsh .msh (MSH 4.1 ASCII/binary, 2.2 ASCII)",
-            path.display()
-        ))),
+    match MeshFormat::of_path(path)? {
+        MeshFormat::Gmsh => gmsh::read(path),
+        MeshFormat::Med => med::read(path),
+    }
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshFormat {
+    Gmsh,
+    Med,
+}
+
+impl MeshFormat {
+    fn of_path(path: &std::path::Path) -> Result<MeshFormat> {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(|e| e.to_ascii_lowercase());
+        match ext.as_deref() {
+            Some("msh") => return Ok(MeshFormat::Gmsh),
+            Some("med" | "mmed" | "rmed") => return Ok(MeshFormat::Med),
+            _ => {}
+        }
+        let mut head = [0u8; 64];
+        let n = {
+            use std::io::Read;
+            let mut f = std::fs::File::open(path).map_err(|e| Error::io(path, e))?;
+            f.read(&mut head).map_err(|e| Error::io(path, e))?
+        };
+        let head = &head[..n];
+        if head.starts_with(b"\x89HDF\r\n\x1a\n") {
+            Ok(MeshFormat::Med)
+        } else if String::from_utf8_lossy(head)
+            .trim_start()
+            .starts_with("$MeshFormat")
+        {
+            Ok(MeshFormat::Gmsh)
+        } else {
+            Err(Error::model(format!(
+                "{}: unknown mesh format (neither a Gmsh .msh file nor a MED/HDF5 file); \
+                 supported: Gmsh MSH 4.1 (ASCII/binary) and 2.2 (ASCII), MED 3.x/4.x",
+                path.display()
+            )))
+        }
     }
 }

@@ -121,3 +121,58 @@ pub fn to_bytes(mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Vec<u8> {
     out.extend_from_slice(b"\n</AppendedData>\n</VTKFile>\n");
     out
 }
+
+/// Membership flags of the written `cells` in each cell group ("group_NAME", 1 or 0),
+/// for groups that hold at least one of them.
+pub fn cell_group_flags(mesh: &Mesh, cells: &[usize]) -> Vec<(String, Vec<i32>)> {
+    let mut out = vec![];
+    for (name, members) in &mesh.cell_groups {
+        let mut flag = vec![0i32; mesh.num_cells()];
+        for &c in members {
+            flag[c] = 1;
+        }
+        let vals: Vec<i32> = cells.iter().map(|&c| flag[c]).collect();
+        if vals.contains(&1) {
+            out.push((format!("group_{name}"), vals));
+        }
+    }
+    out
+}
+
+/// Membership flags of the nodes in each explicit node group ("nodes_NAME", 1.0 or 0.0).
+pub fn node_group_flags(mesh: &Mesh) -> Vec<(String, Vec<f64>)> {
+    mesh.node_groups
+        .iter()
+        .map(|(name, nodes)| {
+            let mut flag = vec![0.0; mesh.num_nodes()];
+            for &n in nodes {
+                flag[n] = 1.0;
+            }
+            (format!("nodes_{name}"), flag)
+        })
+        .collect()
+}
+
+/// The mesh alone, every cell (0D to 2D), with its groups as cell and point flags.
+pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
+    let cells: Vec<usize> = (0..mesh.num_cells()).collect();
+    let cell_flags = cell_group_flags(mesh, &cells);
+    let node_flags = node_group_flags(mesh);
+    let dims: Vec<i32> = cells.iter().map(|&c| mesh.kind(c).dim() as i32).collect();
+    let mut fields = vec![Field::CellInt {
+        name: "cell_dim",
+        values: &dims,
+    }];
+    for (name, vals) in &cell_flags {
+        fields.push(Field::CellInt { name, values: vals });
+    }
+    for (name, vals) in &node_flags {
+        fields.push(Field::Point {
+            name,
+            ncomp: 1,
+            values: vals,
+            components: &[],
+        });
+    }
+    write(path, mesh, &cells, &fields)
+}
