@@ -335,7 +335,7 @@ fn ssnp154_cylinder(b: &mut MeshBuilder, o: &Ssnp154Options) {
     ring.sort_unstable();
     let mut ring: Vec<usize> = ring.into_iter().map(|r| r.1).collect();
     let mut radius = r0 * (-vmax / r0).exp();
-    while ring.len() > 5 && (ring.len() - 1) % 2 == 0 {
+    while ring.len() > 5 && (ring.len() - 1).is_multiple_of(2) {
         // radial gap ≈ 1.3 × the outer spacing keeps the transition triangles above 30°
         let spacing = PI / (ring.len() - 1) as f64;
         radius *= 1.0 - 1.3 * spacing;
