@@ -22,7 +22,7 @@ use crate::fem::solid::{Kinematics, SolidModel};
 use crate::mesh::{generate, CellKind, Mesh};
 use crate::post::stress::{cell_node_stresses, nodal_stresses};
 use crate::solver::linear::Method;
-use crate::solver::newton::{self, NewtonReport, NewtonSettings};
+use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
 use crate::solver::problem::SolidProblem;
 use schema::CaseFile;
 use std::path::{Path, PathBuf};
@@ -260,6 +260,8 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
 /// What a run produces.
 pub struct Outcome {
     pub report: NewtonReport,
+    /// The state after each converged load step (when the case writes VTU files).
+    pub steps: Vec<StepOutcome>,
     /// Per contact pair: (slave node, pressure) from the multipliers.
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
     /// Per contact pair: (slave, master) surfaces.
@@ -271,6 +273,59 @@ pub struct Outcome {
     /// Nodal stresses averaged over all cells sharing a node.
     pub stress: Vec<[f64; 4]>,
     pub probes: Vec<(String, f64)>,
+}
+
+/// The fields of one converged load step.
+pub struct StepOutcome {
+    pub load_factor: f64,
+    pub u: Vec<f64>,
+    pub reactions: Vec<f64>,
+    pub stress: Vec<[f64; 4]>,
+    pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+}
+
+fn step_outcome(
+    mesh: &Mesh,
+    solid: &SolidProblem,
+    load_factor: f64,
+    contact_pressure: Vec<Vec<(usize, f64)>>,
+    contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+) -> Result<StepOutcome> {
+    let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
+    Ok(StepOutcome {
+        load_factor,
+        u: solid.u.clone(),
+        reactions: solid.reactions(),
+        stress: nodal_stresses(mesh, &solid.asm, &elno, None)?,
+        contact_pressure,
+        contact_shear,
+    })
+}
+
+/// Per pair: nodal pressures, and (μ, nodal shear) from the multipliers.
+#[allow(clippy::type_complexity)]
+fn contact_tractions(
+    cp: &ContactProblem,
+) -> (Vec<Vec<(usize, f64)>>, Vec<(f64, Vec<(usize, f64)>)>) {
+    let pressures = cp
+        .pairs
+        .iter()
+        .zip(&cp.mult_base)
+        .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
+        .collect();
+    let shear = cp
+        .pairs
+        .iter()
+        .zip(&cp.mult_base)
+        .map(|(p, &b)| {
+            (
+                p.friction(),
+                p.nodal_shear(&cp.lam[b..b + p.num_multipliers()]),
+            )
+        })
+        .collect();
+    (pressures, shear)
 }
 
 /// Stress component of a probe field (4 = von Mises), None for displacements.
@@ -515,15 +570,19 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         tolerance: case.solver.tolerance,
         max_iterations: case.solver.max_iterations,
         verbose,
+        keep_states: case.output.vtu,
         ..Default::default()
     };
+    let mut steps = vec![];
     let (report, contact_pressure, contact_surfaces, contact_shear) = if case.contact.is_empty() {
-        (
-            newton::solve(&mut problem, &settings, Method::Cholesky)?,
-            vec![],
-            vec![],
-            vec![],
-        )
+        let mut report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
+        let states = std::mem::take(&mut report.states);
+        let mut r = vec![0.0; problem.num_unknowns()];
+        for (lf, x) in &states {
+            problem.evaluate(x, *lf, &mut r, false)?;
+            steps.push(step_outcome(mesh, &problem, *lf, vec![], vec![])?);
+        }
+        (report, vec![], vec![], vec![])
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
@@ -531,24 +590,17 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         // geometry terms: LDLᵀ of the symmetric part with GMRES on the exact matrix (LU if
         // that fails).
         let method = Method::SaddleLdlt;
-        let report = newton::solve(&mut cp, &settings, method)?;
-        let pressures = cp
-            .pairs
-            .iter()
-            .zip(&cp.mult_base)
-            .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
-            .collect();
-        let shear: Vec<(f64, Vec<(usize, f64)>)> = cp
-            .pairs
-            .iter()
-            .zip(&cp.mult_base)
-            .map(|(p, &b)| {
-                (
-                    p.friction(),
-                    p.nodal_shear(&cp.lam[b..b + p.num_multipliers()]),
-                )
-            })
-            .collect();
+        let mut report = newton::solve(&mut cp, &settings, method)?;
+        // Outputs of each converged step; the last state is the final one, so the problem
+        // is left where the solve left it.
+        let states = std::mem::take(&mut report.states);
+        let mut r = vec![0.0; cp.num_unknowns()];
+        for (lf, x) in &states {
+            cp.evaluate(x, *lf, &mut r, false)?;
+            let (p, sh) = contact_tractions(&cp);
+            steps.push(step_outcome(mesh, &cp.solid, *lf, p, sh)?);
+        }
+        let (pressures, shear) = contact_tractions(&cp);
         let surfaces = cp
             .pairs
             .iter()
@@ -568,6 +620,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     }
     Ok(Outcome {
         report,
+        steps,
         contact_pressure,
         contact_surfaces,
         contact_shear,

@@ -79,7 +79,8 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
             ..Default::default()
         },
         output: OutputSpec {
-            vtu: true,
+            // validate, study and the benches write no VTU (nor keep per-step states)
+            vtu: false,
             hertz: Some(HertzSpec {
                 a: 6.2146,
                 p0: 3585.36,

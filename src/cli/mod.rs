@@ -45,9 +45,13 @@ enum Command {
     },
     /// Run the SSNP154 validation.
     Validate {
-        /// Folder holding ssnp154a.msh and ssnp154b.msh (default: built-in meshes).
+        /// Folder holding ssnp154a and ssnp154b as .msh or MED .mmed/.med (default:
+        /// built-in meshes).
         #[arg(long)]
         meshes: Option<PathBuf>,
+        /// With --meshes: read the "msh" or the "med" files (default: .msh if present).
+        #[arg(long)]
+        mesh_format: Option<String>,
         /// Write the table as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -144,11 +148,13 @@ pub fn main() -> Result<i32> {
             meshes,
             json,
             formulation,
+            mesh_format,
             verbose,
         } => validate::validate(
             meshes.as_deref(),
             json.as_deref(),
             formulation.as_deref(),
+            mesh_format.as_deref(),
             verbose,
         ),
         Command::Study {

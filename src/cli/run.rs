@@ -2,11 +2,9 @@
 
 use crate::case;
 use crate::error::{write_atomic, Result};
-use crate::fem::material::von_mises;
-use crate::mesh::Mesh;
 use crate::post::contact_pressure::{half_width, surface_tractions};
 use crate::post::plot;
-use crate::post::vtu::{self, Field};
+use crate::post::result_vtu::{write_series, write_state, Setting, State};
 use serde_json::json;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -22,9 +20,32 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
     };
     let mut files = vec![];
     if case.output.vtu {
+        let materials: Vec<String> = case.material.iter().map(|m| m.group.clone()).collect();
+        let setting = Setting {
+            mesh: &mesh,
+            surfaces: &outcome.contact_surfaces,
+            material_groups: &materials,
+        };
         let f = out_dir.join("result.vtu");
-        write_vtu(&f, &mesh, &outcome)?;
+        write_state(&f, &setting, &final_state(&outcome))?;
         files.push(f.display().to_string());
+        let states: Vec<(f64, State)> = outcome
+            .steps
+            .iter()
+            .map(|s| {
+                let st = State {
+                    u: &s.u,
+                    reactions: &s.reactions,
+                    stress: &s.stress,
+                    pressure: &s.contact_pressure,
+                    shear: &s.contact_shear,
+                };
+                (s.load_factor, st)
+            })
+            .collect();
+        for f in write_series(&out_dir.join("steps"), "step", &setting, &states)? {
+            files.push(f.display().to_string());
+        }
     }
     let n_pairs = outcome.contact_pressure.len();
     for (i, pressures) in outcome.contact_pressure.iter().enumerate() {
@@ -217,80 +238,12 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
     Ok(0)
 }
 
-pub fn write_vtu(path: &Path, mesh: &Mesh, outcome: &case::Outcome) -> Result<()> {
-    let cells: Vec<usize> = mesh.cells_of_dim(2).collect();
-    let disp: Vec<f64> = outcome
-        .u
-        .chunks(2)
-        .flat_map(|d| [d[0], d[1], 0.0])
-        .collect();
-    // Symmetric tensor as ParaView expects: XX, YY, ZZ, XY, YZ, XZ.
-    let sig: Vec<f64> = outcome
-        .stress
-        .iter()
-        .flat_map(|s| [s[0], s[1], s[2], s[3], 0.0, 0.0])
-        .collect();
-    let vm: Vec<f64> = outcome.stress.iter().map(von_mises).collect();
-    let react: Vec<f64> = outcome
-        .reactions
-        .chunks(2)
-        .flat_map(|d| [d[0], d[1], 0.0])
-        .collect();
-    // contact pressure from the multipliers on slave nodes, and a closed/open flag
-    let mut cp = vec![0.0; mesh.num_nodes()];
-    let mut status = vec![0.0; mesh.num_nodes()];
-    let pmax = outcome
-        .contact_pressure
-        .iter()
-        .flatten()
-        .fold(0.0f64, |m, p| m.max(p.1.abs()));
-    for &(n, p) in outcome.contact_pressure.iter().flatten() {
-        cp[n] = p;
-        status[n] = if p > 1e-9 * pmax { 1.0 } else { 0.0 };
+fn final_state(o: &case::Outcome) -> State<'_> {
+    State {
+        u: &o.u,
+        reactions: &o.reactions,
+        stress: &o.stress,
+        pressure: &o.contact_pressure,
+        shear: &o.contact_shear,
     }
-    let group_fields = vtu::cell_group_flags(mesh, &cells);
-    let mut fields = vec![
-        Field::Point {
-            name: "displacement",
-            ncomp: 3,
-            values: &disp,
-            components: &["DX", "DY", "DZ"],
-        },
-        Field::Point {
-            name: "stress",
-            ncomp: 6,
-            values: &sig,
-            components: &["SIXX", "SIYY", "SIZZ", "SIXY", "SIYZ", "SIXZ"],
-        },
-        Field::Point {
-            name: "von_mises",
-            ncomp: 1,
-            values: &vm,
-            components: &[],
-        },
-        Field::Point {
-            name: "reaction",
-            ncomp: 3,
-            values: &react,
-            components: &["RX", "RY", "RZ"],
-        },
-    ];
-    if !outcome.contact_pressure.is_empty() {
-        fields.push(Field::Point {
-            name: "contact_pressure",
-            ncomp: 1,
-            values: &cp,
-            components: &[],
-        });
-        fields.push(Field::Point {
-            name: "contact_closed",
-            ncomp: 1,
-            values: &status,
-            components: &[],
-        });
-    }
-    for (name, vals) in &group_fields {
-        fields.push(Field::CellInt { name, values: vals });
-    }
-    vtu::write(path, mesh, &cells, &fields)
 }

@@ -2,7 +2,8 @@
 //! modelisations and the node-to-segment variants the reference could not run, against the
 //! reference values.
 //!
-//! On the reference meshes (`--meshes DIR` reading ssnp154a.msh / ssnp154b.msh) the
+//! On the reference meshes (`--meshes DIR` reading ssnp154a / ssnp154b as .msh, or as MED
+//! .mmed/.med when there is no .msh or `--mesh-format med` asks for it) the
 //! tolerance is the benchmark's 0.1 %; on the built-in meshes, which differ from the
 //! reference ones, it is 1 %. The exit status is 0 only if every value is within tolerance.
 
@@ -16,8 +17,16 @@ pub fn validate(
     meshes: Option<&Path>,
     json_out: Option<&Path>,
     formulation: Option<&str>,
+    mesh_format: Option<&str>,
     verbose: bool,
 ) -> Result<i32> {
+    if let Some(f) = mesh_format {
+        if f != "msh" && f != "med" {
+            return Err(crate::error::Error::model(format!(
+                "validate: --mesh-format '{f}' is not one of msh, med"
+            )));
+        }
+    }
     let (source, tolerance): (String, f64) = match meshes {
         Some(d) => (format!("reference meshes in {}", d.display()), 1e-3),
         None => ("built-in meshes".to_string(), 1e-2),
@@ -56,17 +65,14 @@ pub fn validate(
             .iter()
             .find(|r| r.0 == row.reference)
             .unwrap();
-        let file = if quadratic {
-            "ssnp154b.msh"
-        } else {
-            "ssnp154a.msh"
-        };
+        let stem = if quadratic { "ssnp154b" } else { "ssnp154a" };
         let (spec, mesh_name) = match meshes {
             Some(dir) => {
+                let file = reference_file(dir, stem, mesh_format)?;
                 let mut spec = ssnp154::builtin_mesh(quadratic, 1.5);
                 spec.generator = None;
-                spec.file = Some(dir.join(file).display().to_string());
-                (spec, file.to_string())
+                spec.file = Some(dir.join(&file).display().to_string());
+                (spec, file)
             }
             None => (
                 ssnp154::builtin_mesh(quadratic, 1.5),
@@ -205,4 +211,29 @@ fn hertz_deviation(
         .filter(|(x, _)| x.abs() < 0.9 * a)
         .map(|&(x, p)| (p - p0 * (1.0 - (x / a).powi(2)).sqrt()).abs() / p0)
         .fold(0.0, f64::max)
+}
+
+/// The file of a reference mesh in `dir`: `stem.msh`, else `stem.mmed` or `stem.med`
+/// (`format` = "msh" or "med" takes only that kind).
+fn reference_file(dir: &Path, stem: &str, format: Option<&str>) -> Result<String> {
+    let candidates: &[&str] = match format {
+        Some("msh") => &["msh"],
+        Some("med") => &["mmed", "med"],
+        _ => &["msh", "mmed", "med"],
+    };
+    candidates
+        .iter()
+        .map(|ext| format!("{stem}.{ext}"))
+        .find(|f| dir.join(f).is_file())
+        .ok_or_else(|| {
+            crate::error::Error::model(format!(
+                "validate --meshes: no {} in {}",
+                candidates
+                    .iter()
+                    .map(|e| format!("{stem}.{e}"))
+                    .collect::<Vec<_>>()
+                    .join(" or "),
+                dir.display()
+            ))
+        })
 }

@@ -3,11 +3,15 @@
 //! | file | what |
 //! |---|---|
 //! | `contact_pressure.rs` | tractions from surface stresses, half-width |
+//! | `contact_state.rs` | gap and open/stick/slip status at the slave nodes |
 //! | `plot.rs` | dependency-free SVG plots |
+//! | `result_vtu.rs` | result fields of a state as VTU, a load history as a .pvd series |
 //! | `stress.rs` | Gauss-point stresses, extrapolation to nodes, nodal averages |
-//! | `vtu.rs` | ParaView .vtu writer (raw appended binary, atomic write) |
+//! | `vtu.rs` | ParaView .vtu/.pvd writers (raw appended binary, atomic writes) |
 
 pub mod contact_pressure;
+pub mod contact_state;
 pub mod plot;
+pub mod result_vtu;
 pub mod stress;
 pub mod vtu;

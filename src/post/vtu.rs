@@ -176,3 +176,17 @@ pub fn write_mesh(path: &Path, mesh: &Mesh) -> Result<()> {
     }
     write(path, mesh, &cells, &fields)
 }
+
+/// A ParaView collection (.pvd): one dataset per (time, file name relative to the .pvd).
+pub fn write_pvd(path: &Path, entries: &[(f64, String)]) -> Result<()> {
+    let mut xml = String::from(
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n",
+    );
+    for (t, file) in entries {
+        xml.push_str(&format!(
+            "<DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{file}\"/>\n"
+        ));
+    }
+    xml.push_str("</Collection>\n</VTKFile>\n");
+    crate::error::write_atomic(path, xml.as_bytes())
+}

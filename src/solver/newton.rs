@@ -53,6 +53,8 @@ pub struct NewtonSettings {
     pub max_iterations: usize,
     pub max_cuts: usize,
     pub verbose: bool,
+    /// Keep the unknowns of every converged step in `NewtonReport::states`.
+    pub keep_states: bool,
 }
 
 impl Default for NewtonSettings {
@@ -63,6 +65,7 @@ impl Default for NewtonSettings {
             max_iterations: 25,
             max_cuts: 8,
             verbose: false,
+            keep_states: false,
         }
     }
 }
@@ -93,6 +96,9 @@ pub struct NewtonReport {
     pub time_evaluate_s: f64,
     pub time_factor_s: f64,
     pub time_solve_s: f64,
+    /// (load factor, unknowns) after each converged step, with `keep_states`.
+    #[serde(skip)]
+    pub states: Vec<(f64, Vec<f64>)>,
 }
 
 /// Solves the problem from its current state to λ = 1.
@@ -229,6 +235,9 @@ pub fn solve(
         let converged = step.converged;
         report.steps.push(step);
         if converged {
+            if settings.keep_states {
+                report.states.push((lambda, x.clone()));
+            }
             problem.commit_step();
             lambda_done = lambda;
             dl = (2.0 * dl).min(base); // grow back after a cut
