@@ -1,14 +1,15 @@
 //! Mutation fuzzing of the mesh readers: `cargo run --release --example fuzz_readers -- SECONDS`
-//! runs each reader (MED, MSH 4.1 ASCII, MSH 2.2 ASCII) for SECONDS (default 10) on mutated
-//! copies of files our writers make, and reports the count of inputs tried, how many were
+//! runs each reader (MSH 4.1 and 2.2 ASCII, VTU; MED for twice as long) for SECONDS
+//! (default 10) on mutated copies of files our writers make, and reports the count of inputs tried, how many were
 //! rejected with an error, and any panic (the input is saved to the temp folder).
-//! The MED and MSH readers run in two threads (the machine has two cores).
+//! MED runs in one thread, MSH then VTU in another (the machine has two cores); reader
+//! names after SECONDS (med, msh, vtu) run only those.
 
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::{Duration, Instant};
 use tribo::mesh::generate::{ssnp154, Ssnp154Options};
 use tribo::mesh::gmsh_write::{to_string, MshVersion};
-use tribo::mesh::{gmsh, med, med_write};
+use tribo::mesh::{gmsh, med, med_write, vtu_read};
 
 struct Rng(u64);
 impl Rng {
@@ -104,14 +105,35 @@ fn main() {
             ]
         })
         .collect();
-    let med_thread = std::thread::spawn(move || {
-        run("MED", med_seeds, secs, |b| {
-            med::parse(b, "fuzz.med").is_ok()
+    let dir = std::env::temp_dir();
+    let vtu_seeds: Vec<Vec<u8>> = [(&lin, "lin"), (&quad, "quad")]
+        .iter()
+        .map(|(m, name)| {
+            let p = dir.join(format!("fuzz-seed-{name}-{}.vtu", std::process::id()));
+            tribo::post::vtu::write_mesh(&p, m).unwrap();
+            let b = std::fs::read(&p).unwrap();
+            let _ = std::fs::remove_file(&p);
+            b
         })
+        .collect();
+    // Optional reader names after SECONDS restrict the run (e.g. `-- 600 vtu`).
+    let only: Vec<String> = std::env::args().skip(2).map(|a| a.to_uppercase()).collect();
+    let on = move |name: &str| only.is_empty() || only.iter().any(|o| o == name);
+    let med_on = on("MED");
+    let med_thread = std::thread::spawn(move || {
+        !med_on
+            || run("MED", med_seeds, 2.0 * secs, |b| {
+                med::parse(b, "fuzz.med").is_ok()
+            })
     });
-    let msh_ok = run("MSH", msh_seeds, secs, |b| {
-        gmsh::parse(&b, "fuzz.msh").is_ok()
-    });
+    let msh_ok = !on("MSH")
+        || run("MSH", msh_seeds, secs, |b| {
+            gmsh::parse(&b, "fuzz.msh").is_ok()
+        });
+    let vtu_ok = !on("VTU")
+        || run("VTU", vtu_seeds, secs, |b| {
+            vtu_read::parse(&b, "fuzz.vtu").is_ok()
+        });
     let med_ok = med_thread.join().unwrap_or(false);
-    std::process::exit(if msh_ok && med_ok { 0 } else { 1 });
+    std::process::exit(if msh_ok && med_ok && vtu_ok { 0 } else { 1 });
 }

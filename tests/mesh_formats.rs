@@ -81,6 +81,14 @@ fn round_trips_keep_nodes_cells_and_groups() {
         // Node groups come back as node groups from MED (MED orders cells by type, so
         // cell indices change; `compare` checked the cell groups as cell sets).
         assert_eq!(mesh.node_groups, back.node_groups, "{name}");
+        // MSH -> VTU -> mesh: every node, cell (all dimensions) and group.
+        let pv = tmp("rt.vtu");
+        tribo::post::vtu::write_mesh(&pv, &mesh).unwrap();
+        let back = tribo::mesh::read(&pv).unwrap();
+        assert_same(&format!("{name} VTU"), &mesh, &back);
+        assert_eq!(mesh.cell_groups, back.cell_groups, "{name} VTU");
+        assert_eq!(mesh.node_groups, back.node_groups, "{name} VTU");
+        assert_eq!(mesh.num_cells(), back.num_cells(), "{name} VTU");
         // MSH -> MED -> MSH through files and `mesh::read` (extension dispatch).
         let (pm, pd) = (tmp("rt.msh"), tmp("rt.med"));
         gmsh_write::write(&pm, &mesh, MshVersion::V41).unwrap();
@@ -370,4 +378,63 @@ fn mutated_med_files_never_panic() {
     }
     // Most single-byte changes hit data, not structure; some must still be caught.
     assert!(rejected > 0, "no mutation of {tries} was rejected");
+}
+
+#[test]
+fn vtu_reader_takes_ascii_arrays_and_rejects_what_it_cannot_read() {
+    let ascii = r#"<?xml version="1.0"?>
+<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian">
+<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="2">
+<Points><DataArray type="Float32" NumberOfComponents="3" format="ascii">
+0 0 0  1 0 0  1 1 0  0 1 0</DataArray></Points>
+<Cells>
+<DataArray type="Int32" Name="connectivity" format="ascii">0 1 2 3 0 1</DataArray>
+<DataArray type="Int32" Name="offsets" format="ascii">4 6</DataArray>
+<DataArray type="UInt8" Name="types" format="ascii">9 3</DataArray>
+</Cells>
+<CellData><DataArray type="Int32" Name="group_Bottom" format="ascii">0 1</DataArray></CellData>
+</Piece></UnstructuredGrid></VTKFile>
+"#;
+    let m = tribo::mesh::vtu_read::parse(ascii.as_bytes(), "a.vtu").unwrap();
+    assert_eq!(m.num_nodes(), 4);
+    assert_eq!(m.kind(0), CellKind::Quad4);
+    assert_eq!(m.cell_groups["Bottom"], vec![1]);
+    let bad = |from: &str, to: &str| {
+        let text = ascii.replace(from, to);
+        tribo::mesh::vtu_read::parse(text.as_bytes(), "b.vtu")
+            .unwrap_err()
+            .to_string()
+    };
+    assert_eq!(
+        bad("9 3", "12 3"),
+        "b.vtu: cell 1: VTK cell type 12 is not supported (1, 3, 21, 5, 22, 9, 23)"
+    );
+    assert_eq!(
+        bad("4 6", "4 5"),
+        "b.vtu: array 'connectivity': 6 values, expected 5"
+    );
+    assert_eq!(
+        bad("1 1 0  0 1 0", "1 1 0  0 1 2"),
+        "b.vtu: point 4 has z = 2: 3D meshes are not supported"
+    );
+    assert_eq!(
+        bad(
+            "byte_order=\"LittleEndian\"",
+            "byte_order=\"LittleEndian\" compressor=\"vtkZLibDataCompressor\""
+        ),
+        "b.vtu: compressed VTU files are not supported"
+    );
+    assert_eq!(
+        bad("format=\"ascii\">\n0 0 0", "format=\"binary\">\n0 0 0"),
+        "b.vtu: array 'Points': format 'binary' is not supported (ascii or appended raw)"
+    );
+    // Truncated raw appended data.
+    let mesh = overlapping_groups();
+    let p = tmp("cut.vtu");
+    tribo::post::vtu::write_mesh(&p, &mesh).unwrap();
+    let full = std::fs::read(&p).unwrap();
+    let e = tribo::mesh::vtu_read::parse(&full[..full.len() - 100], "cut.vtu")
+        .unwrap_err()
+        .to_string();
+    assert!(e.starts_with("cut.vtu: array '"), "{e}");
 }

@@ -10,6 +10,7 @@
 //! | `med.rs` | MED (HDF5) mesh reader |
 //! | `gmsh_write.rs`, `med_write.rs` | MSH 4.1/2.2 and MED writers (`tribo mesh convert`) |
 //! | `families.rs` | entities partitioned by their set of groups (for the writers) |
+//! | `vtu_read.rs` | VTU mesh reader (uncompressed ASCII / raw appended) |
 //! | `compare.rs` | are two meshes the same (nodes, cells, groups)? |
 //! | `quadtree.rs` | balanced quadtree → conforming graded quad/triangle cells |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
@@ -29,6 +30,7 @@ pub mod med_write;
 pub mod quadtree;
 pub mod quality;
 pub mod topology;
+pub mod vtu_read;
 
 pub use builder::MeshBuilder;
 pub use cell::CellKind;
@@ -175,12 +177,14 @@ impl Mesh {
     }
 }
 
-/// Reads a mesh file: Gmsh `.msh` or MED `.med`/`.mmed`, by extension, or by content
-/// when the extension is neither (an HDF5 signature means MED, `$MeshFormat` Gmsh).
+/// Reads a mesh file: Gmsh `.msh`, MED `.med`/`.mmed` or `.vtu`, by extension, or by
+/// content when the extension is none of these (HDF5 signature: MED, `$MeshFormat`: Gmsh,
+/// XML: VTU).
 pub fn read(path: &std::path::Path) -> Result<Mesh> {
     match MeshFormat::of_path(path)? {
         MeshFormat::Gmsh => gmsh::read(path),
         MeshFormat::Med => med::read(path),
+        MeshFormat::Vtu => vtu_read::read(path),
     }
 }
 
@@ -188,6 +192,7 @@ pub fn read(path: &std::path::Path) -> Result<Mesh> {
 pub enum MeshFormat {
     Gmsh,
     Med,
+    Vtu,
 }
 
 impl MeshFormat {
@@ -199,6 +204,7 @@ impl MeshFormat {
         match ext.as_deref() {
             Some("msh") => return Ok(MeshFormat::Gmsh),
             Some("med" | "mmed" | "rmed") => return Ok(MeshFormat::Med),
+            Some("vtu") => return Ok(MeshFormat::Vtu),
             _ => {}
         }
         let mut head = [0u8; 64];
@@ -217,8 +223,8 @@ impl MeshFormat {
             Ok(MeshFormat::Gmsh)
         } else {
             Err(Error::model(format!(
-                "{}: unknown mesh format (neither a Gmsh .msh file nor a MED/HDF5 file); \
-                 supported: Gmsh MSH 4.1 (ASCII/binary) and 2.2 (ASCII), MED 3.x/4.x",
+                "{}: unknown mesh format (not a Gmsh .msh, MED/HDF5 or VTU file); \
+                 supported: Gmsh MSH 4.1 (ASCII/binary) and 2.2 (ASCII), MED 3.x/4.x, VTU",
                 path.display()
             )))
         }
