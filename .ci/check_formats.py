@@ -135,7 +135,8 @@ def check_result(run_dir):
     res = meshio.read(f"{run_dir}/result.vtu")
     pd = res.point_data
     for field in ["displacement", "stress", "von_mises", "reaction", "contact_pressure",
-                  "contact_shear", "contact_gap", "contact_status"]:
+                  "contact_shear", "contact_gap", "contact_status", "contact_multiplier_normal",
+                  "contact_multiplier_tangential"]:
         if field not in pd:
             fail(f"result.vtu: no point field {field}")
     for field in ["material", "group_Block", "group_Cylinder"]:
@@ -155,6 +156,9 @@ def check_result(run_dir):
             fail(f"node {n + 1}: VTU contact_pressure {pd['contact_pressure'][n]} != CSV {p}")
         if r["shear"] and abs(pd["contact_shear"][n] - float(r["shear"])) > 1e-9 * max(1.0, abs(p)):
             fail(f"node {n + 1}: VTU contact_shear != CSV")
+        # point-to-segment (case C): the normal multiplier is -p
+        if abs(pd["contact_multiplier_normal"][n] + p) > 1e-9 * max(1.0, abs(p)):
+            fail(f"node {n + 1}: contact_multiplier_normal != -pressure")
     if worst > 1e-9:
         fail(f"deformed coordinates differ from the CSV by {worst}")
     status = pd["contact_status"]

@@ -81,6 +81,7 @@ fn main() {
         stress: &out.stress,
         pressure: &out.contact_pressure,
         shear: &out.contact_shear,
+        multipliers: &out.contact_multipliers,
     };
     let path = tmp.join("result.vtu");
     let (med, min) = timed(|| write_state(&path, &setting, &state).unwrap());

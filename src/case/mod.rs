@@ -264,6 +264,8 @@ pub struct Outcome {
     pub steps: Vec<StepOutcome>,
     /// Per contact pair: (slave node, pressure) from the multipliers.
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
+    pub contact_multipliers: Vec<Multipliers>,
     /// Per contact pair: (slave, master) surfaces.
     pub contact_surfaces: Vec<(Surface, Surface)>,
     /// Per contact pair: (slave node, tangential traction) with friction, and μ.
@@ -283,7 +285,11 @@ pub struct StepOutcome {
     pub stress: Vec<[f64; 4]>,
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
     pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+    pub contact_multipliers: Vec<Multipliers>,
 }
+
+/// (slave node, [normal, tangential] multiplier) of one contact pair.
+pub type Multipliers = Vec<(usize, [f64; 2])>;
 
 fn step_outcome(
     mesh: &Mesh,
@@ -300,14 +306,20 @@ fn step_outcome(
         stress: nodal_stresses(mesh, &solid.asm, &elno, None)?,
         contact_pressure,
         contact_shear,
+        contact_multipliers: vec![],
     })
 }
 
-/// Per pair: nodal pressures, and (μ, nodal shear) from the multipliers.
+/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers, and the raw
+/// multipliers.
 #[allow(clippy::type_complexity)]
 fn contact_tractions(
     cp: &ContactProblem,
-) -> (Vec<Vec<(usize, f64)>>, Vec<(f64, Vec<(usize, f64)>)>) {
+) -> (
+    Vec<Vec<(usize, f64)>>,
+    Vec<(f64, Vec<(usize, f64)>)>,
+    Vec<Multipliers>,
+) {
     let pressures = cp
         .pairs
         .iter()
@@ -325,7 +337,13 @@ fn contact_tractions(
             )
         })
         .collect();
-    (pressures, shear)
+    let multipliers = cp
+        .pairs
+        .iter()
+        .zip(&cp.mult_base)
+        .map(|(p, &b)| p.nodal_multipliers(&cp.lam[b..b + p.num_multipliers()]))
+        .collect();
+    (pressures, shear, multipliers)
 }
 
 /// Stress component of a probe field (4 = von Mises), None for displacements.
@@ -574,6 +592,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         ..Default::default()
     };
     let mut steps = vec![];
+    let mut contact_multipliers = vec![];
     let (report, contact_pressure, contact_surfaces, contact_shear) = if case.contact.is_empty() {
         let mut report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
         let states = std::mem::take(&mut report.states);
@@ -597,10 +616,12 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         let mut r = vec![0.0; cp.num_unknowns()];
         for (lf, x) in &states {
             cp.evaluate(x, *lf, &mut r, false)?;
-            let (p, sh) = contact_tractions(&cp);
-            steps.push(step_outcome(mesh, &cp.solid, *lf, p, sh)?);
+            let (p, sh, m) = contact_tractions(&cp);
+            let mut step = step_outcome(mesh, &cp.solid, *lf, p, sh)?;
+            step.contact_multipliers = m;
+            steps.push(step);
         }
-        let (pressures, shear) = contact_tractions(&cp);
+        let (pressures, shear, multipliers) = contact_tractions(&cp);
         let surfaces = cp
             .pairs
             .iter()
@@ -610,6 +631,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
             })
             .collect();
         problem = cp.solid;
+        contact_multipliers = multipliers;
         (report, pressures, surfaces, shear)
     };
     let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
@@ -622,6 +644,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         report,
         steps,
         contact_pressure,
+        contact_multipliers,
         contact_surfaces,
         contact_shear,
         reactions: problem.reactions(),

@@ -39,6 +39,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                     stress: &s.stress,
                     pressure: &s.contact_pressure,
                     shear: &s.contact_shear,
+                    multipliers: &s.contact_multipliers,
                 };
                 (s.load_factor, st)
             })
@@ -245,5 +246,6 @@ fn final_state(o: &case::Outcome) -> State<'_> {
         stress: &o.stress,
         pressure: &o.contact_pressure,
         shear: &o.contact_shear,
+        multipliers: &o.contact_multipliers,
     }
 }

@@ -749,6 +749,9 @@ impl ContactPair for Mortar {
         self.active = self.saved.clone();
     }
 
+    fn multiplier_nodes(&self) -> &[usize] {
+        &self.mult_nodes
+    }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)
     }

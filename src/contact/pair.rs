@@ -35,6 +35,21 @@ pub trait ContactPair {
     fn nodal_shear(&self, _lam: &[f64]) -> Vec<(usize, f64)> {
         vec![]
     }
+    /// Slave node of each normal multiplier (multiplier k; with friction the tangential
+    /// one of node k is multiplier `len + k`).
+    fn multiplier_nodes(&self) -> &[usize];
+    /// (slave node, [normal, tangential] multiplier) as the formulation stores them (the
+    /// tangential one 0 without friction).
+    fn nodal_multipliers(&self, lam: &[f64]) -> Vec<(usize, [f64; 2])> {
+        let nodes = self.multiplier_nodes();
+        let nm = nodes.len();
+        let with_t = self.num_multipliers() >= 2 * nm;
+        nodes
+            .iter()
+            .enumerate()
+            .map(|(k, &n)| (n, [lam[k], if with_t { lam[nm + k] } else { 0.0 }]))
+            .collect()
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

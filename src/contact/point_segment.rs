@@ -1009,6 +1009,9 @@ impl super::pair::ContactPair for PointToSegment {
     fn restore(&mut self) {
         self.restore()
     }
+    fn multiplier_nodes(&self) -> &[usize] {
+        &self.mult_nodes
+    }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)
     }

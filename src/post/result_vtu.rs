@@ -1,8 +1,11 @@
 //! The result fields of one state written as a VTU file, and a load history as a `.pvd`
 //! time series of them (the load factor as time). Point data: displacement, stress (XX,
 //! YY, ZZ, XY), von Mises, reactions, and on the slave nodes of each contact pair the
-//! pressure and shear from the multipliers (in stress units), the gap and the status
-//! (0 open, 1 stick, 2 slip). Cell data: groups and the material of each 2D cell.
+//! pressure and shear from the multipliers (in stress units), the gap, the status (0 open,
+//! 1 stick, 2 slip) and the multipliers as the formulation stores them (normal: −p for
+//! point-to-segment, a force for node-to-segment, p for mortar; tangential: Λ with
+//! |Λ| ≤ 1 for point-to-segment, the traction for mortar). Cell data: groups and the
+//! material of each 2D cell.
 
 use super::contact_state::{gaps, statuses};
 use super::vtu::{self, Field};
@@ -20,6 +23,8 @@ pub struct State<'a> {
     /// Per contact pair: (slave node, pressure) and (μ, (slave node, shear)).
     pub pressure: &'a [Vec<(usize, f64)>],
     pub shear: &'a [(f64, Vec<(usize, f64)>)],
+    /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
+    pub multipliers: &'a [crate::case::Multipliers],
 }
 
 /// What stays the same from state to state.
@@ -49,6 +54,7 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
     let n = mesh.num_nodes();
     let (mut cp, mut shear, mut gap, mut status) =
         (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    let (mut lam_n, mut lam_t) = (vec![0.0; n], vec![0.0; n]);
     for (i, pressures) in st.pressure.iter().enumerate() {
         let (mu, sh) = st.shear.get(i).map_or((0.0, &[][..]), |s| (s.0, &s.1[..]));
         for &(node, p) in pressures {
@@ -59,6 +65,10 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
         }
         for (node, code) in statuses(pressures, sh, mu) {
             status[node] = code as f64;
+        }
+        for &(node, m) in st.multipliers.get(i).map_or(&[][..], |m| &m[..]) {
+            lam_n[node] = m[0];
+            lam_t[node] = m[1];
         }
         if let Some((slave, master)) = s.surfaces.get(i) {
             for (node, g) in gaps(mesh, st.u, slave, master) {
@@ -106,6 +116,8 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
             ("contact_shear", &shear),
             ("contact_gap", &gap),
             ("contact_status", &status),
+            ("contact_multiplier_normal", &lam_n),
+            ("contact_multiplier_tangential", &lam_t),
         ] {
             fields.push(Field::Point {
                 name,
