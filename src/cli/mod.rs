@@ -5,8 +5,10 @@
 //! | `run.rs` | `tribo run CASE.toml [-o DIR]` |
 //! | `mesh.rs` | `tribo mesh info`, `mesh convert`, `mesh compare` |
 //! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
+//! | `report.rs` | `tribo validate --report DIR`: report.html with inline SVG plots |
 
 mod mesh;
+pub mod report;
 mod run;
 mod study;
 mod validate;
@@ -52,6 +54,9 @@ enum Command {
         /// With --meshes: read the "msh" or the "med" files (default: .msh if present).
         #[arg(long)]
         mesh_format: Option<String>,
+        /// Write report.html (and each plot as SVG + CSV) in this folder.
+        #[arg(long)]
+        report: Option<PathBuf>,
         /// Write the table as JSON.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -90,6 +95,9 @@ enum StudyCommand {
         /// Write the levels as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Write DIR/study.json and DIR/study.csv, which `validate --report DIR` shows.
+        #[arg(long)]
+        report: Option<PathBuf>,
     },
 }
 
@@ -149,12 +157,14 @@ pub fn main() -> Result<i32> {
             json,
             formulation,
             mesh_format,
+            report,
             verbose,
         } => validate::validate(
             meshes.as_deref(),
             json.as_deref(),
             formulation.as_deref(),
             mesh_format.as_deref(),
+            report.as_deref(),
             verbose,
         ),
         Command::Study {
@@ -166,8 +176,11 @@ pub fn main() -> Result<i32> {
                     kinematics,
                     json,
                     csv,
+                    report,
                 },
         } => {
+            let json = json.or_else(|| report.as_ref().map(|d| d.join("study.json")));
+            let csv = csv.or_else(|| report.as_ref().map(|d| d.join("study.csv")));
             use crate::fem::solid::Kinematics;
             let kinematics = match kinematics.as_str() {
                 "small" => vec![Kinematics::Small],

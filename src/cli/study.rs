@@ -84,8 +84,10 @@ pub fn hertz(opts: &Options) -> Result<i32> {
             let mut c = ssnp154::contact_case(id, spec, Some(opts.formulation));
             c.model.kinematics = kin;
             ssnp154::choose_mortar_slave(&mut c, &mesh);
+            progress(k, opts.levels, kname);
             let out = case::run(&c, &mesh, false)?;
             let wall = t0.elapsed().as_secs_f64();
+            progress(k + 1, opts.levels, kname);
             // large kinematics: the true pressure at the deformed abscissa, as measured
             let samples: Vec<(f64, f64)> = match kin {
                 Kinematics::Small => out.contact_pressure[0]
@@ -203,6 +205,25 @@ pub fn hertz(opts: &Options) -> Result<i32> {
         write_atomic(p, csv.as_bytes())?;
     }
     Ok(0)
+}
+
+/// A progress bar on stderr when it is a terminal (levels get ~4x dearer each).
+fn progress(done: usize, total: usize, what: &str) {
+    use std::io::{IsTerminal, Write};
+    let mut e = std::io::stderr();
+    if !e.is_terminal() {
+        return;
+    }
+    let width = 30;
+    let filled = width * done / total.max(1);
+    let _ = write!(
+        e,
+        "\r[{}{}] level {done}/{total} ({what} kinematics){}",
+        "#".repeat(filled),
+        ".".repeat(width - filled),
+        if done == total { "\n" } else { "" }
+    );
+    let _ = e.flush();
 }
 
 fn show(r: Option<f64>) -> String {

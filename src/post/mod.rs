@@ -2,6 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
+//! | `contact_picture.rs` | SVG of the deformed contact region coloured by von Mises |
 //! | `contact_pressure.rs` | tractions from surface stresses, half-width |
 //! | `contact_state.rs` | gap and open/stick/slip status at the slave nodes |
 //! | `plot.rs` | dependency-free SVG plots |
@@ -9,6 +10,7 @@
 //! | `stress.rs` | Gauss-point stresses, extrapolation to nodes, nodal averages |
 //! | `vtu.rs` | ParaView .vtu/.pvd writers (raw appended binary, atomic writes) |
 
+pub mod contact_picture;
 pub mod contact_pressure;
 pub mod contact_state;
 pub mod plot;

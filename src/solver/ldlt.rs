@@ -17,8 +17,9 @@ use faer::sparse::SymbolicSparseColMatRef;
 use faer::{Conj, MatMut, Par, Side};
 
 /// The analysis (ordering, permuted pattern, symbolic factorisation) is done once per
-/// pattern; each numeric factorisation writes the symmetric part of the matrix straight into
-/// the permuted lower triangle, so faer has nothing to permute, and reuses its storage.
+/// pattern; each numeric factorisation writes a symmetric approximation of the matrix (see
+/// `factor`) straight into the permuted lower triangle, so faer has nothing to permute, and
+/// reuses its storage.
 pub struct SaddleLdlt {
     /// Constrained order: position i of the factorised matrix is unknown `fwd[i]`.
     fwd: Vec<usize>,
@@ -31,6 +32,8 @@ pub struct SaddleLdlt {
     /// Factorisation and solve workspaces, kept between factorisations.
     scratch: MemBuffer,
     solve_scratch: MemBuffer,
+    /// Number of displacement unknowns (the multipliers follow).
+    np: usize,
 }
 
 const NONE: usize = usize::MAX;
@@ -192,15 +195,31 @@ impl SaddleLdlt {
             symbolic,
             scratch,
             solve_scratch,
+            np,
         })
     }
 
-    /// Factorises the symmetric part ½(A + Aᵀ) of `a` (the pattern given to `new`);
-    /// `transpose[p]` is the position in `a` of the transpose of entry p.
+    /// Factorises a symmetric matrix equal to `a` when `a` is symmetric (the pattern given
+    /// to `new`); `transpose[p]` is the position in `a` of the transpose of entry p.
     pub fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
-        for (p, &q) in self.map.iter().enumerate() {
-            if q != NONE {
-                self.permuted.values[q] = 0.5 * (a.values[p] + a.values[transpose[p]]);
+        // The symmetric matrix factorised: the displacement block's symmetric part, and
+        // for the multiplier couplings the displacement rows (the contact forces), mirrored
+        // onto the constraint rows. With friction this is a better preconditioner for GMRES
+        // on the exact matrix than the symmetric part (SSNP154 D: 213 -> 108 iterations).
+        for col in 0..a.n {
+            for p in a.col_ptr[col]..a.col_ptr[col + 1] {
+                let q = self.map[p];
+                if q == NONE {
+                    continue;
+                }
+                let row = a.row_idx[p];
+                self.permuted.values[q] = if row < self.np && col < self.np {
+                    0.5 * (a.values[p] + a.values[transpose[p]])
+                } else if row <= col {
+                    a.values[p]
+                } else {
+                    a.values[transpose[p]]
+                };
             }
         }
         self.symbolic

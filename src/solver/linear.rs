@@ -176,8 +176,8 @@ impl LinearSolver {
 }
 
 impl LinearSolver {
-    /// A x = b by GMRES on the exact matrix, preconditioned by the LDLᵀ of its symmetric
-    /// part: one iteration for a symmetric tangent, a few for the contact tangents that are
+    /// A x = b by GMRES on the exact matrix, preconditioned by the LDLᵀ of a symmetric
+    /// approximation (`SaddleLdlt::factor`): exact for a symmetric tangent, a few for the contact tangents that are
     /// not. If GMRES stalls (a tangent far from symmetric), LU of the exact matrix takes over,
     /// for this solve and the rest of the problem.
     fn solve_iterative(&mut self, b: &mut [f64]) -> Result<()> {

@@ -1,0 +1,99 @@
+//! The validation report: its plots are the computed data (SVG points read back against
+//! the CSV written beside them), friction plots carry stick/slip zones, the page holds
+//! every section.
+
+use std::path::Path;
+use tribo::case::{self, ssnp154};
+use tribo::cli::report::{write, Check, Row};
+use tribo::post::plot::read_back;
+
+#[test]
+fn report_plots_are_the_computed_data() {
+    // SSNP154 C (friction) on a coarse built-in mesh: every kind of plot.
+    let spec = ssnp154::builtin_mesh(false, 3.0);
+    let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
+    let c = ssnp154::contact_case("C", spec, None);
+    let out = case::run(&c, &mesh, false).unwrap();
+    let dy = out.probes.iter().find(|p| p.0 == "DY_B").unwrap().1;
+    let row = Row {
+        id: "C".into(),
+        setup: "test".into(),
+        mesh_name: "built-in".into(),
+        case: c,
+        mesh,
+        outcome: out,
+        checks: vec![Check {
+            quantity: "DY_B",
+            value: dy,
+            reference: -1.3010796,
+            rel_error: (dy / -1.3010796 - 1.0).abs(),
+            tolerance: 0.05,
+            pass: true,
+        }],
+        wall: 0.0,
+    };
+    let dir = std::env::temp_dir().join(format!("tribo-report-{}", std::process::id()));
+    write(&dir, &[row], "built-in meshes", "settings").unwrap();
+    let html = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    for needle in [
+        "<table>",
+        "C: contact pressure",
+        "C: shear traction",
+        "deformed contact region",
+        "Newton convergence",
+        "Versions and settings",
+    ] {
+        assert!(html.contains(needle), "report.html lacks '{needle}'");
+    }
+    assert!(!html.contains("NaN"), "a NaN reached the report");
+    for plot in ["C_pressure", "C_shear", "C_newton"] {
+        let svg = std::fs::read_to_string(dir.join(format!("{plot}.svg"))).unwrap();
+        let csv = std::fs::read_to_string(dir.join(format!("{plot}.csv"))).unwrap();
+        let series = read_back(&svg);
+        assert!(!series.is_empty(), "{plot}: no series");
+        for (label, pts) in &series {
+            let rows: Vec<(f64, f64)> = csv
+                .lines()
+                .skip(1)
+                .filter(|l| l.starts_with(&format!("{label},")))
+                .map(|l| {
+                    let f: Vec<&str> = l.rsplitn(3, ',').collect();
+                    (f[1].parse().unwrap(), f[0].parse().unwrap())
+                })
+                .collect();
+            assert_eq!(rows.len(), pts.len(), "{plot} '{label}': point counts");
+            let log_y = plot == "C_newton";
+            let (xs, ys): (Vec<f64>, Vec<f64>) = rows.iter().copied().unzip();
+            let span = |v: &[f64]| {
+                v.iter().copied().fold(f64::MIN, f64::max)
+                    - v.iter().copied().fold(f64::MAX, f64::min)
+            };
+            let (sx, sy) = (
+                span(&xs).max(1.0),
+                if log_y { 20.0 } else { span(&ys).max(1.0) },
+            );
+            for (&(x, y), &(bx, by)) in rows.iter().zip(pts) {
+                let y = if log_y { y.log10() } else { y };
+                // pixels are written to 1e-3: the data come back to ~1e-5 of the range
+                assert!(
+                    (bx - x).abs() < 2e-4 * sx,
+                    "{plot} '{label}': x {bx} vs {x}"
+                );
+                assert!(
+                    (by - y).abs() < 2e-4 * sy,
+                    "{plot} '{label}': y {by} vs {y}"
+                );
+            }
+        }
+    }
+    let shear = std::fs::read_to_string(dir.join("C_shear.svg")).unwrap();
+    assert!(
+        shear.contains("class=\"band\" data-label=\"stick\""),
+        "no stick zone drawn"
+    );
+    assert!(
+        shear.contains("class=\"band\" data-label=\"slip\""),
+        "no slip zone drawn"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
