@@ -10,8 +10,8 @@
 mod mesh;
 pub mod report;
 mod run;
-mod study;
-mod validate;
+pub mod study;
+pub mod validate;
 
 use crate::error::Result;
 use clap::{Parser, Subcommand};
@@ -95,7 +95,8 @@ enum StudyCommand {
         /// Write the levels as CSV.
         #[arg(long)]
         csv: Option<PathBuf>,
-        /// Write DIR/study.json and DIR/study.csv, which `validate --report DIR` shows.
+        /// Write DIR/study.json, DIR/study.csv and log-log plots DIR/study_K.svg (shown by
+        /// `validate --report DIR`).
         #[arg(long)]
         report: Option<PathBuf>,
     },
@@ -199,6 +200,7 @@ pub fn main() -> Result<i32> {
                 kinematics,
                 json: json.as_deref(),
                 csv: csv.as_deref(),
+                svg_dir: report.as_deref(),
             })
         }
     }

@@ -28,6 +28,9 @@ struct Level {
     peak: f64,
     half_width: f64,
     l2: f64,
+    /// relative L2 difference of the pressure profile from the previous (coarser) level
+    profile_change: f64,
+    samples: Vec<(f64, f64)>,
     dy_b: f64,
     iterations: usize,
     wall: f64,
@@ -40,6 +43,8 @@ pub struct Options<'a> {
     pub kinematics: Vec<Kinematics>,
     pub json: Option<&'a Path>,
     pub csv: Option<&'a Path>,
+    /// Folder for the log-log plots (study_K.svg).
+    pub svg_dir: Option<&'a Path>,
 }
 
 pub fn hertz(opts: &Options) -> Result<i32> {
@@ -112,6 +117,10 @@ pub fn hertz(opts: &Options) -> Result<i32> {
                 peak,
                 half_width: half_width(&samples).unwrap_or(f64::NAN),
                 l2: l2_error(&samples),
+                profile_change: levels.last().map_or(f64::NAN, |prev: &Level| {
+                    profile_change(&prev.samples, &samples)
+                }),
+                samples: samples.clone(),
                 dy_b: out
                     .probes
                     .iter()
@@ -161,6 +170,7 @@ pub fn hertz(opts: &Options) -> Result<i32> {
         let ch_peak = change(&|l| l.peak / P0);
         let ch_a = change(&|l| l.half_width / A);
         let ch_dy = change(&|l| l.dy_b);
+        let ch_profile: Vec<f64> = levels.iter().skip(1).map(|l| l.profile_change).collect();
         let rates = json!({
             "error_vs_hertz": {
                 "peak": fitted_rate(&err_peak),
@@ -171,17 +181,19 @@ pub fn hertz(opts: &Options) -> Result<i32> {
                 "peak": fitted_rate(&ch_peak),
                 "half_width": fitted_rate(&ch_a),
                 "dy_b": fitted_rate(&ch_dy),
+                "profile_l2": fitted_rate(&ch_profile),
             },
         });
         println!(
             "observed rates (least-squares slope in log h): against Hertz: peak {}, half-width {}, L2 {};\n  \
-             of the change between levels: peak {}, half-width {}, DY_B {}\n",
+             of the change between levels: peak {}, half-width {}, DY_B {}, profile (L2) {}\n",
             show(fitted_rate(&err_peak)),
             show(fitted_rate(&err_a)),
             show(fitted_rate(&err_l2)),
             show(fitted_rate(&ch_peak)),
             show(fitted_rate(&ch_a)),
             show(fitted_rate(&ch_dy)),
+            show(fitted_rate(&ch_profile)),
         );
         doc.push(json!({
             "kinematics": kname,
@@ -190,16 +202,20 @@ pub fn hertz(opts: &Options) -> Result<i32> {
             "levels": levels.iter().map(|l| json!({
                 "size_mm": l.size, "nodes": l.nodes, "slave": l.slave, "peak_MPa": l.peak,
                 "half_width_mm": l.half_width, "l2_error": l.l2, "dy_b_mm": l.dy_b,
+                "profile_change_l2": if l.profile_change.is_finite() { json!(l.profile_change) } else { json!(null) },
                 "newton_iterations": l.iterations, "wall_s": l.wall,
             })).collect::<Vec<_>>(),
             "rates": rates,
         }));
     }
+    let doc = json!({"hertz": {"a": A, "p0": P0}, "studies": doc});
     if let Some(p) = opts.json {
-        let text =
-            serde_json::to_string_pretty(&json!({"hertz": {"a": A, "p0": P0}, "studies": doc}))
-                .expect("JSON of numbers");
+        let text = serde_json::to_string_pretty(&doc).expect("JSON of numbers");
         write_atomic(p, text.as_bytes())?;
+    }
+    if let Some(dir) = opts.svg_dir {
+        let n = super::report::study_plots(dir, &doc)?.len();
+        println!("{n} log-log plots in {}", dir.display());
     }
     if let Some(p) = opts.csv {
         write_atomic(p, csv.as_bytes())?;
@@ -230,15 +246,12 @@ fn show(r: Option<f64>) -> String {
     r.map_or("-".into(), |v| format!("{v:.2}"))
 }
 
-/// Relative L2 error of a nodal pressure profile (x ≥ 0, linear between nodes) against
-/// Hertz over [0, max(a, last loaded x)], by a fine trapezoid rule.
-pub fn l2_error(samples: &[(f64, f64)]) -> f64 {
+/// Sorted copy of a nodal profile, and its value at x (linear between nodes, constant
+/// beyond the ends).
+fn profile(samples: &[(f64, f64)]) -> impl Fn(f64) -> f64 {
     let mut s: Vec<(f64, f64)> = samples.to_vec();
     s.sort_by(|l, r| l.0.total_cmp(&r.0));
-    if s.len() < 2 {
-        return f64::NAN;
-    }
-    let at = |x: f64| -> f64 {
+    move |x: f64| -> f64 {
         match s.iter().position(|p| p.0 >= x) {
             Some(0) => s[0].1,
             Some(i) => {
@@ -246,26 +259,54 @@ pub fn l2_error(samples: &[(f64, f64)]) -> f64 {
                 let (x1, p1) = s[i];
                 p0 + (p1 - p0) * (x - x0) / (x1 - x0)
             }
-            None => s[s.len() - 1].1,
+            None => s.last().map_or(f64::NAN, |p| p.1),
         }
-    };
-    let hertz = |x: f64| P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt();
-    let pmax = s.iter().fold(0.0f64, |m, p| m.max(p.1));
-    let end = s
-        .iter()
-        .filter(|p| p.1 > 1e-3 * pmax)
-        .map(|p| p.0)
-        .fold(A, f64::max)
-        * 1.05;
+    }
+}
+
+/// ‖f − g‖ / ‖g‖ in L2 over [0, end], by a fine trapezoid rule.
+fn relative_l2(f: impl Fn(f64) -> f64, g: impl Fn(f64) -> f64, end: f64) -> f64 {
     let n = 4000;
     let (mut num, mut den) = (0.0, 0.0);
     for i in 0..=n {
         let x = end * i as f64 / n as f64;
         let w = if i == 0 || i == n { 0.5 } else { 1.0 };
-        num += w * (at(x) - hertz(x)).powi(2);
-        den += w * hertz(x).powi(2);
+        num += w * (f(x) - g(x)).powi(2);
+        den += w * g(x).powi(2);
     }
     (num / den).sqrt()
+}
+
+/// Where a profile's loaded part ends (at least a), with a 5 % margin.
+fn loaded_end(samples: &[(f64, f64)]) -> f64 {
+    let pmax = samples.iter().fold(0.0f64, |m, p| m.max(p.1));
+    samples
+        .iter()
+        .filter(|p| p.1 > 1e-3 * pmax)
+        .map(|p| p.0)
+        .fold(A, f64::max)
+        * 1.05
+}
+
+/// Relative L2 error of a nodal pressure profile (x ≥ 0, linear between nodes) against
+/// Hertz over [0, max(a, last loaded x)], by a fine trapezoid rule.
+pub fn l2_error(samples: &[(f64, f64)]) -> f64 {
+    if samples.len() < 2 {
+        return f64::NAN;
+    }
+    let hertz = |x: f64| P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt();
+    relative_l2(profile(samples), hertz, loaded_end(samples))
+}
+
+/// Relative L2 difference between the profile of one level and that of the next finer
+/// one (the discretisation error of the pressure, free of what the model itself differs
+/// from Hertz).
+pub fn profile_change(coarse: &[(f64, f64)], fine: &[(f64, f64)]) -> f64 {
+    if coarse.len() < 2 || fine.len() < 2 {
+        return f64::NAN;
+    }
+    let end = loaded_end(fine).max(loaded_end(coarse));
+    relative_l2(profile(coarse), profile(fine), end)
 }
 
 /// Least-squares slope of log e against log h for levels h_k = h_0 / 2^k (the rate p in
@@ -292,6 +333,23 @@ pub fn fitted_rate(errors: &[f64]) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn profile_change_is_the_relative_l2_difference() {
+        let fine: Vec<(f64, f64)> = (0..=40)
+            .map(|k| {
+                let x = 8.0 * k as f64 / 40.0;
+                (x, P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt())
+            })
+            .collect();
+        assert_eq!(profile_change(&fine, &fine), 0.0);
+        let scaled: Vec<(f64, f64)> = fine.iter().map(|&(x, p)| (x, 1.1 * p)).collect();
+        assert!((profile_change(&scaled, &fine) - 0.1).abs() < 1e-12);
+        // a coarser sampling of the same curve differs by its interpolation error only
+        let coarse: Vec<(f64, f64)> = fine.iter().step_by(4).copied().collect();
+        let d = profile_change(&coarse, &fine);
+        assert!(d > 0.0 && d < 0.03, "{d}");
+    }
 
     #[test]
     fn rate_of_a_power_law_is_its_exponent() {
