@@ -173,3 +173,74 @@ fn mortar_results_are_reproducible_bit_for_bit() {
     let b = pressures(CellKind::Quad8, "mortar", "");
     assert_eq!(a, b);
 }
+
+/// Three stacked blocks, two contact pairs: the middle block is slave on the lower one and
+/// master of the upper one; the lower block has every node clamped (a rigid obstacle, no
+/// special case). Uniform pressure on top: both interfaces carry P (mortar, 1e-8).
+#[test]
+fn two_pairs_and_a_clamped_obstacle_carry_the_uniform_pressure() {
+    let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, CellKind::Quad4, 0.0).unwrap();
+    let middle = rectangle([0.0, 0.0], 2.0, 1.0, 5, 2, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([0.0, 1.0], 2.0, 1.0, 4, 3, CellKind::Quad4, 0.0).unwrap();
+    let mut b = MeshBuilder::new("three blocks");
+    b.append(&lower, |g| format!("Lower{g}"));
+    b.append(&middle, |g| format!("Middle{g}"));
+    b.append(&upper, |g| format!("Upper{g}"));
+    let mesh = b.finish().unwrap();
+    let text = format!(
+        r#"
+[mesh]
+generator = "rectangle"
+width = 1.0
+height = 1.0
+nx = 1
+ny = 1
+[[material]]
+group = "LowerBody"
+E = 1000.0
+nu = 0.3
+[[material]]
+group = "MiddleBody"
+E = 500.0
+nu = 0.25
+[[material]]
+group = "UpperBody"
+E = 2000.0
+nu = 0.3
+[[displacement]]
+group = "LowerBody"
+dx = 0.0
+dy = 0.0
+[[displacement]]
+group = "MiddleLeft"
+dx = 0.0
+[[displacement]]
+group = "UpperLeft"
+dx = 0.0
+[[pressure]]
+group = "UpperTop"
+p = {P}
+[[contact]]
+slave = "MiddleBottom"
+master = "LowerTop"
+formulation = "mortar"
+initial = "all"
+[[contact]]
+slave = "UpperBottom"
+master = "MiddleTop"
+formulation = "mortar"
+initial = "all"
+"#
+    );
+    let case: CaseFile = toml::from_str(&text).unwrap();
+    let out = run(&case, &mesh, false).unwrap();
+    assert_eq!(out.contact_pressure.len(), 2);
+    for (i, pair) in out.contact_pressure.iter().enumerate() {
+        let worst = pair
+            .iter()
+            .map(|&(_, p)| ((p - P) / P).abs())
+            .fold(0.0, f64::max);
+        println!("pair {}: max |p - P| / P = {worst:.2e}", i + 1);
+        assert!(worst < 1e-8, "pair {}: {worst:e}", i + 1);
+    }
+}
