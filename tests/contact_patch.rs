@@ -244,3 +244,75 @@ initial = "all"
         assert!(worst < 1e-8, "pair {}: {worst:e}", i + 1);
     }
 }
+
+/// A block pressed and dragged across a clamped foundation by displacements imposed on its
+/// top, with Coulomb friction (μ = 0.3): once the whole interface slides, the tangential
+/// reaction is μ times the normal one (1e-6), for mortar and point-to-segment.
+#[test]
+fn sliding_block_tangential_reaction_is_mu_times_normal() {
+    for formulation in ["mortar", "point-to-segment"] {
+        let lower = rectangle([-1.0, -1.0], 4.0, 1.0, 8, 2, CellKind::Quad4, 0.0).unwrap();
+        let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5, 3, CellKind::Quad4, 0.0).unwrap();
+        let mut b = MeshBuilder::new("sliding block");
+        b.append(&lower, |g| format!("Lower{g}"));
+        b.append(&upper, |g| format!("Upper{g}"));
+        let mesh = b.finish().unwrap();
+        let extra = if formulation == "mortar" {
+            ""
+        } else {
+            "integration = \"nodal\""
+        };
+        let text = format!(
+            r#"
+[mesh]
+generator = "rectangle"
+width = 1.0
+height = 1.0
+nx = 1
+ny = 1
+[[material]]
+group = "LowerBody"
+E = 1000.0
+nu = 0.3
+[[material]]
+group = "UpperBody"
+E = 1000.0
+nu = 0.3
+[[displacement]]
+group = "LowerBody"
+dx = 0.0
+dy = 0.0
+[[displacement]]
+group = "UpperTop"
+dx = 0.05
+dy = -0.005
+[[contact]]
+slave = "UpperBottom"
+master = "LowerTop"
+formulation = "{formulation}"
+initial = "all"
+friction = 0.3
+{extra}
+[solver]
+steps = 4
+"#
+        );
+        let case: CaseFile = toml::from_str(&text).unwrap();
+        let out = run(&case, &mesh, false).unwrap();
+        let (rx, ry) = mesh
+            .node_group("UpperTop")
+            .unwrap()
+            .iter()
+            .fold((0.0, 0.0), |(x, y), &n| {
+                (x + out.reactions[2 * n], y + out.reactions[2 * n + 1])
+            });
+        let ratio = (rx / ry).abs();
+        println!("{formulation}: RX = {rx:.6e}, RY = {ry:.6e}, |RX/RY| = {ratio:.9}");
+        // reactions are the forces on the block's top: pressed down means RY < 0
+        assert!(ry < 0.0, "{formulation}: the block must be pressed down");
+        assert!(
+            (ratio / 0.3 - 1.0).abs() < 1e-6,
+            "{formulation}: |RX/RY| = {ratio}"
+        );
+    }
+}

@@ -57,6 +57,13 @@ pub struct Mortar {
     pub friction_excluded: Vec<usize>,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
+    /// Friction law per node at the last status update (0 none, 1 stick, 2 slip +, 3 slip −),
+    /// and at the start of the step: a change is a status change, so Newton does not stop
+    /// on balanced displacement rows while the friction rows follow another branch.
+    law: Vec<u8>,
+    saved_law: Vec<u8>,
+    /// D_j of the last `contribute`, to express its constraint rows as pressures.
+    last_d: std::cell::RefCell<Vec<f64>>,
 }
 
 /// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
@@ -119,6 +126,9 @@ impl Mortar {
             friction: None,
             friction_excluded: vec![],
             u_start: vec![0.0; 2 * mesh.num_nodes()],
+            law: vec![],
+            saved_law: vec![],
+            last_d: Default::default(),
         };
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
@@ -456,11 +466,14 @@ impl Mortar {
         }
     }
 
-    /// Weighted gaps, D_j and whether each slave node faces the master surface (at least
-    /// half of ∫ N_j is covered by master segments) at u.
-    fn gaps(&self, mesh: &Mesh, u: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<bool>) {
+    /// Weighted gaps, D_j, whether each slave node faces the master surface (at least
+    /// half of ∫ N_j is covered by master segments) and the weighted slips (zero without
+    /// friction) at u.
+    #[allow(clippy::type_complexity)]
+    fn gaps(&self, mesh: &Mesh, u: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<bool>, Vec<f64>) {
         let nm = self.mult_nodes.len();
         let (mut g, mut d, mut cov) = (vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]);
+        let mut sl = vec![0.0; nm];
         for ic in 0..self.slave.cells.len() {
             let t = self.cell_terms(mesh, u, ic);
             for (k, v) in t.gap {
@@ -472,9 +485,12 @@ impl Mortar {
             for (k, v) in t.cover {
                 cov[k] += v;
             }
+            for (k, v) in t.slip {
+                sl[k] += v;
+            }
         }
         let facing = (0..nm).map(|k| cov[k] > 0.5 * d[k]).collect();
-        (g, d, facing)
+        (g, d, facing, sl)
     }
 }
 
@@ -516,7 +532,7 @@ impl ContactPair for Mortar {
     fn initialise(&mut self, mesh: &Mesh) {
         // Nodes already touching (normalised gap within 1e-6 of the cell size) start active.
         let u = vec![0.0; 2 * mesh.num_nodes()];
-        let (_, _, facing) = self.gaps(mesh, &u);
+        let (_, _, facing, _) = self.gaps(mesh, &u);
         for k in 0..self.active.len() {
             self.active[k] = facing[k] && self.touching(mesh, &u, self.mult_nodes[k]);
         }
@@ -552,6 +568,7 @@ impl ContactPair for Mortar {
                 k.add(dof, ndof + mult_base + j, v);
             }
         }
+        self.last_d.borrow_mut().clone_from(&d);
         // Augmentation on active nodes: the force of the energy (c/2) g̃_j²/D_j, zero at
         // convergence (g̃_j = 0) but giving the displacement block the stiffness that holds
         // bodies only held by contact, so that the saddle-point LDLT needs no pivoting.
@@ -728,7 +745,7 @@ impl ContactPair for Mortar {
     }
 
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
-        let (g, d, facing) = self.gaps(mesh, u);
+        let (g, d, facing, sl) = self.gaps(mesh, u);
         let mut changes = 0;
         for j in 0..self.active.len() {
             let active = facing[j] && lam[j] - self.c * g[j] / d[j] > 0.0;
@@ -737,16 +754,67 @@ impl ContactPair for Mortar {
                 self.active[j] = active;
             }
         }
+        if let Some(mu) = self.friction {
+            // the branch `contribute` will take at this iterate (same rule)
+            let nm = self.mult_nodes.len();
+            self.law.resize(nm, 0);
+            let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for j in 0..nm {
+                let pressure = lam[j];
+                let law = if !self.active[j]
+                    || self.friction_excluded.contains(&j)
+                    || pressure <= 1e-8 * lmax
+                {
+                    0
+                } else {
+                    let trial = lam[nm + j] + self.c * sl[j] / d[j];
+                    if trial.abs() <= mu * pressure {
+                        1
+                    } else if trial > 0.0 {
+                        2
+                    } else {
+                        3
+                    }
+                };
+                if law != self.law[j] {
+                    changes += 1;
+                    self.law[j] = law;
+                }
+            }
+        }
         changes
     }
 
     fn commit(&mut self, u: &[f64]) {
         self.saved = self.active.clone();
+        self.saved_law = self.law.clone();
         self.u_start.copy_from_slice(u);
     }
 
     fn restore(&mut self) {
         self.active = self.saved.clone();
+        self.law = self.saved_law.clone();
+    }
+
+    fn constraint_residual(&self, rl: &[f64], lam: &[f64]) -> f64 {
+        // every row (weighted gap or slip, or multiplier × D_j / c) times c / D_j is a
+        // pressure; relative to the largest normal multiplier
+        let d = self.last_d.borrow();
+        let nm = self.mult_nodes.len();
+        if d.len() != nm {
+            return 0.0;
+        }
+        let scale = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let worst = rl
+            .iter()
+            .enumerate()
+            .map(|(k, r)| (r * self.c / d[k % nm]).abs())
+            .fold(0.0f64, f64::max);
+        if scale > 0.0 {
+            worst / scale
+        } else {
+            worst
+        }
     }
 
     fn multiplier_nodes(&self) -> &[usize] {

@@ -50,6 +50,11 @@ pub trait ContactPair {
             .map(|(k, &n)| (n, [lam[k], if with_t { lam[nm + k] } else { 0.0 }]))
             .collect()
     }
+    /// How far the last `contribute`'s constraint rows `rl` are from being satisfied,
+    /// relative to the contact pressure scale (0: not measured, the displacement rows decide).
+    fn constraint_residual(&self, _rl: &[f64], _lam: &[f64]) -> f64 {
+        0.0
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

@@ -94,7 +94,12 @@ impl Nonlinear for ContactProblem<'_> {
                 base,
             );
         }
-        let norms = self.solid.finish_residual(Some(&self.ru), &mut r[..nf]);
+        let mut norms = self.solid.finish_residual(Some(&self.ru), &mut r[..nf]);
+        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            let c = p.constraint_residual(&r[nf + base..nf + base + n], &self.lam[base..base + n]);
+            norms.constraint = norms.constraint.max(c);
+        }
         if with_tangent {
             self.coupled.update(
                 &self.solid.asm.matrix,

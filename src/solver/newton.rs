@@ -158,7 +158,8 @@ pub fn solve(
             let likely_converged = changes == 0 && prev.is_some_and(|p| p < 1e-3);
             let mut norms = problem.evaluate(&x, lambda, &mut r, !likely_converged)?;
             if likely_converged
-                && !(norms.relative() <= settings.tolerance || norms.residual == 0.0)
+                && !(norms.relative() <= settings.tolerance
+                    || (norms.residual == 0.0 && norms.constraint <= settings.tolerance))
             {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
@@ -200,7 +201,11 @@ pub fn solve(
                 failure = Some(format!("divergence (residual {rel:.1e})"));
                 break;
             }
-            if it > 0 && changes == 0 && (rel <= settings.tolerance || norms.residual == 0.0) {
+            if it > 0
+                && changes == 0
+                && (rel <= settings.tolerance
+                    || (norms.residual == 0.0 && norms.constraint <= settings.tolerance))
+            {
                 step.converged = true;
                 break;
             }

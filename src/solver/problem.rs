@@ -27,15 +27,19 @@ pub struct Norms {
     pub residual: f64,
     /// max |λ f_ext| and |reaction| over all dofs: the scale of the residual.
     pub reference: f64,
+    /// Residual of the constraint (multiplier) rows, already relative (0 when unmeasured).
+    pub constraint: f64,
 }
 
 impl Norms {
+    /// The larger of the displacement rows' residual over its scale and the constraint rows'.
     pub fn relative(&self) -> f64 {
-        if self.reference > 0.0 {
+        let r = if self.reference > 0.0 {
             self.residual / self.reference
         } else {
             self.residual
-        }
+        };
+        r.max(self.constraint)
     }
 }
 
@@ -88,6 +92,7 @@ impl<'m> SolidProblem<'m> {
         Norms {
             residual,
             reference,
+            constraint: 0.0,
         }
     }
 
