@@ -161,6 +161,12 @@ fn bad_contact_entries_are_rejected() {
         "[[contact]] 1 (Top on Top): slave and master must be different groups"
     );
     assert_eq!(
+        contact_error("body.toml", pair),
+        "[[contact]] 1 (Top on Bottom): 'Top' and 'Bottom' belong to the same body (its cells \
+         are connected through shared nodes); self-contact is not supported: split the body or \
+         pick surfaces of two bodies"
+    );
+    assert_eq!(
         contact_error("mu.toml", &format!("{pair}\nfriction = -0.1")),
         "[[contact]] 1 (Top on Bottom): friction must be 0 or positive, got -0.1"
     );

@@ -435,6 +435,22 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
         let master = Surface::from_group(mesh, &c.master, "master")
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        // Checked after the options, so that their errors come first.
+        let same_body = || -> Result<()> {
+            let bodies = crate::mesh::topology::node_bodies(mesh);
+            let of = |s: &Surface| -> std::collections::BTreeSet<usize> {
+                s.nodes.iter().map(|&n| bodies[n]).collect()
+            };
+            if of(&slave).is_disjoint(&of(&master)) {
+                return Ok(());
+            }
+            Err(Error::model(format!(
+                "{what}: '{}' and '{}' belong to the same body (its cells are connected \
+                 through shared nodes); self-contact is not supported: split the body or pick \
+                 surfaces of two bodies",
+                c.slave, c.master
+            )))
+        };
         let integration = match c.integration.as_str() {
             "gauss" if (1..=10).contains(&c.gauss_points) => Integration::Gauss(c.gauss_points),
             "gauss" => {
@@ -517,6 +533,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                         (a[0] - b[0]).hypot(a[1] - b[1])
                     })
                     .fold(f64::INFINITY, f64::min);
+                same_body()?;
                 let mut mortar = Mortar::new(
                     mesh,
                     slave,
@@ -559,6 +576,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             friction_excluded,
             ..Default::default()
         };
+        same_body()?;
         pairs.push(Box::new(PointToSegment::new(
             mesh,
             slave,

@@ -30,3 +30,37 @@ pub fn edge_parent(
     let start = mesh.cell_nodes(c)[mesh.kind(c).edges()[e][0]];
     Some((c, start == a))
 }
+
+/// The body (connected set of 2D cells sharing nodes) of each node, numbered from 0;
+/// usize::MAX for nodes of no 2D cell.
+pub fn node_bodies(mesh: &Mesh) -> Vec<usize> {
+    // union-find over nodes, joined through the corners of each 2D cell
+    let mut parent: Vec<usize> = (0..mesh.num_nodes()).collect();
+    fn root(parent: &mut [usize], mut i: usize) -> usize {
+        while parent[i] != i {
+            parent[i] = parent[parent[i]];
+            i = parent[i];
+        }
+        i
+    }
+    let mut used = vec![false; mesh.num_nodes()];
+    for c in mesh.cells_of_dim(2) {
+        let nodes = mesh.cell_nodes(c);
+        for &n in nodes {
+            used[n] = true;
+            let (a, b) = (root(&mut parent, nodes[0]), root(&mut parent, n));
+            parent[b] = a;
+        }
+    }
+    let mut id: HashMap<usize, usize> = HashMap::new();
+    (0..mesh.num_nodes())
+        .map(|n| {
+            if !used[n] {
+                return usize::MAX;
+            }
+            let r = root(&mut parent, n);
+            let next = id.len();
+            *id.entry(r).or_insert(next)
+        })
+        .collect()
+}
