@@ -64,6 +64,8 @@ pub struct Mortar {
     saved_law: Vec<u8>,
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
     last_d: std::cell::RefCell<Vec<f64>>,
+    /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
+    cell_mults: Vec<Vec<usize>>,
 }
 
 /// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
@@ -107,6 +109,11 @@ impl Mortar {
                 cells_of_node.entry(n).or_default().push(ic);
             }
         }
+        let cell_mults = slave
+            .cells
+            .iter()
+            .map(|&c| mesh.cell_nodes(c).iter().map(|n| mult_of[n]).collect())
+            .collect();
         let candidates = initial_candidates(mesh, &slave, &master);
         let mut m = Mortar {
             slave,
@@ -129,6 +136,7 @@ impl Mortar {
             law: vec![],
             saved_law: vec![],
             last_d: Default::default(),
+            cell_mults,
         };
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
@@ -825,11 +833,23 @@ impl ContactPair for Mortar {
     }
 
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
-        self.mult_nodes
-            .iter()
-            .enumerate()
-            .map(|(k, &n)| (n, lam[k]))
-            .collect()
+        let mut p: Vec<f64> = lam[..self.mult_nodes.len()].to_vec();
+        // A node of zero weight (∫ N_j dA = 0: the Seg3 corner on the axis in axisymmetry)
+        // carries no multiplier; its pressure is extrapolated from its cell's other nodes
+        // (mid-side at ξ = 0, far corner at ξ = 1: p = 2 p_mid − p_far).
+        let d = self.last_d.borrow();
+        let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let weightless = |k: usize| d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax);
+        for nodes in &self.cell_mults {
+            if let [a, b, mid] = nodes[..] {
+                for (end, far) in [(a, b), (b, a)] {
+                    if weightless(end) && !weightless(far) && !weightless(mid) {
+                        p[end] = 2.0 * lam[mid] - lam[far];
+                    }
+                }
+            }
+        }
+        self.mult_nodes.iter().copied().zip(p).collect()
     }
 
     fn nodal_shear(&self, lam: &[f64]) -> Vec<(usize, f64)> {
