@@ -165,6 +165,16 @@ def check_result(run_dir):
     closed = [int(r["node"]) - 1 for r in rows if float(r["pressure"]) > 1e-6]
     if not closed or not all(status[n] in (1.0, 2.0) for n in closed):
         fail("loaded slave nodes must have status stick (1) or slip (2)")
+    # The curve along the block top: arc length increasing, values those of the VTU.
+    curve = list(csv.DictReader(open(f"{run_dir}/curve_Top_B.csv")))
+    s_prev = -1.0
+    for r in curve:
+        n = int(r["node"]) - 1
+        if float(r["s"]) <= s_prev:
+            fail("curve_Top_B.csv: arc length not increasing")
+        s_prev = float(r["s"])
+        if abs(pd["displacement"][n, 1] - float(r["dy"])) > 1e-12 or abs(pd["stress"][n, 1] - float(r["siyy"])) > 1e-9 * max(1.0, abs(float(r["siyy"]))):
+            fail(f"curve_Top_B.csv: node {n + 1} differs from result.vtu")
     # The time series: every step readable, times increasing, the last one = result.vtu.
     pvd = ET.parse(f"{run_dir}/steps/step.pvd").getroot()
     sets = pvd.findall("./Collection/DataSet")
@@ -176,7 +186,7 @@ def check_result(run_dir):
         last = meshio.read(f"{run_dir}/steps/{s.get('file')}")
     if last is not None and np.max(np.abs(last.point_data["displacement"] - pd["displacement"])) > 0:
         fail("last step of step.pvd differs from result.vtu")
-    print(f"  {run_dir}: {len(rows)} slave nodes checked against pressure.csv, "
+    print(f"  {run_dir}: {len(rows)} slave nodes checked against pressure.csv, {len(curve)} curve nodes, "
           f"{len(sets)} steps in step.pvd (times {times})")
 
 

@@ -194,3 +194,30 @@ fn bad_contact_entries_are_rejected() {
         "{e}"
     );
 }
+
+#[test]
+fn probe_at_a_point_takes_the_nearest_node_and_curves_check_their_group() {
+    // the corner TopRight is (2, 1): a probe at (1.98, 0.97) reads its node
+    let text = format!(
+        "{GOOD}[[output.probe]]\nname = \"by_group\"\ngroup = \"TopRight\"\nfield = \"dy\"\n\
+         [[output.probe]]\nname = \"by_point\"\nat = [1.98, 0.97]\nfield = \"dy\"\n"
+    );
+    let p = write_case("probe_at.toml", &text);
+    let (c, dir) = case::load(&p).unwrap();
+    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
+    let out = case::run(&c, &mesh, false).unwrap();
+    assert_eq!(out.probes[0].1, out.probes[1].1);
+    assert!(out.probes[0].1 < 0.0);
+    let both = format!(
+        "{GOOD}[[output.probe]]\nname = \"p\"\ngroup = \"TopRight\"\nat = [0.0, 0.0]\nfield = \"dy\"\n"
+    );
+    assert_eq!(
+        error_of("probe_both.toml", &both),
+        "probe 'p': give either group = \"NAME\" or at = [x, y]"
+    );
+    let curve = format!("{GOOD}[[output.curve]]\nname = \"c\"\ngroup = \"Body\"\n");
+    assert_eq!(
+        error_of("curve.toml", &curve),
+        "[[output.curve]] 'c': curve: group 'Body' holds no edge (Seg2/Seg3) cells"
+    );
+}

@@ -364,13 +364,42 @@ fn probe_component(spec: &schema::ProbeSpec) -> Result<Option<usize>> {
     })
 }
 
-/// Value of a probe: mean of the field over the nodes of its group.
+/// The nodes a probe averages over: its group's, or the node nearest to its point.
+fn probe_nodes(mesh: &Mesh, spec: &schema::ProbeSpec) -> Result<Vec<usize>> {
+    let what = format!("probe '{}'", spec.name);
+    match (&spec.group, spec.at) {
+        (Some(g), None) => mesh
+            .node_group(g)
+            .map_err(|e| Error::model(format!("{what}: {e}"))),
+        (None, Some(p)) => {
+            let cells: Vec<usize> = match &spec.stress_group {
+                Some(g) => mesh
+                    .cell_group(g)
+                    .map_err(|e| Error::model(format!("{what}: {e}")))?
+                    .to_vec(),
+                None => mesh.cells_of_dim(2).collect(),
+            };
+            let nearest = cells
+                .iter()
+                .flat_map(|&c| mesh.cell_nodes(c).iter().copied())
+                .min_by(|&a, &b| {
+                    let d = |n: usize| (mesh.coords[n][0] - p[0]).hypot(mesh.coords[n][1] - p[1]);
+                    d(a).total_cmp(&d(b))
+                })
+                .ok_or_else(|| Error::model(format!("{what}: no node to probe")))?;
+            Ok(vec![nearest])
+        }
+        _ => Err(Error::model(format!(
+            "{what}: give either group = \"NAME\" or at = [x, y]"
+        ))),
+    }
+}
+
+/// Value of a probe: mean of the field over the nodes of its group (or at its node).
 pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]]) -> Result<f64> {
     let mesh = problem.mesh;
     let what = format!("probe '{}'", spec.name);
-    let nodes = mesh
-        .node_group(&spec.group)
-        .map_err(|e| Error::model(format!("{what}: {e}")))?;
+    let nodes = probe_nodes(mesh, spec)?;
     let comp = probe_component(spec)?;
     let values: Vec<f64> = match comp {
         None => {
@@ -403,7 +432,7 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
     if values.iter().any(|v| v.is_nan()) {
         return Err(Error::model(format!(
             "{what}: some nodes of group '{}' are in no cell of the stress group",
-            spec.group
+            spec.group.as_deref().unwrap_or("")
         )));
     }
     Ok(values.iter().sum::<f64>() / values.len() as f64)
@@ -593,9 +622,12 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
 pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     let mut problem = build_problem(case, mesh)?;
     // Probes are checked before the (possibly long) solve.
+    for c in &case.output.curve {
+        crate::post::curve::chain(mesh, &c.group)
+            .map_err(|e| Error::model(format!("[[output.curve]] '{}': {e}", c.name)))?;
+    }
     for p in &case.output.probe {
-        mesh.node_group(&p.group)
-            .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
+        probe_nodes(mesh, p)?;
         if let Some(g) = &p.stress_group {
             mesh.cell_group(g)
                 .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;

@@ -200,6 +200,17 @@ pub struct OutputSpec {
     pub probe: Vec<ProbeSpec>,
     /// Hertz line-contact curve drawn on the pressure plot: half-width a and peak p0.
     pub hertz: Option<HertzSpec>,
+    /// Nodal fields along edge groups, ordered by arc length (curve_NAME.csv).
+    #[serde(default)]
+    pub curve: Vec<CurveSpec>,
+}
+
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CurveSpec {
+    pub name: String,
+    /// An edge group forming one chain.
+    pub group: String,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -215,6 +226,7 @@ impl Default for OutputSpec {
             vtu: true,
             probe: vec![],
             hertz: None,
+            curve: vec![],
         }
     }
 }
@@ -227,8 +239,12 @@ fn yes() -> bool {
 #[serde(deny_unknown_fields)]
 pub struct ProbeSpec {
     pub name: String,
-    /// Node group; the probe is the mean over its nodes.
-    pub group: String,
+    /// Node group; the probe is the mean over its nodes. Give this or `at`.
+    #[serde(default)]
+    pub group: Option<String>,
+    /// A point (x, y): the probe is the value at the nearest node of a 2D cell (of
+    /// `stress_group` when given).
+    pub at: Option<[f64; 2]>,
     /// dx, dy, sixx, siyy, sizz, sixy, vmis
     pub field: String,
     /// For stress fields: average the extrapolated values over the cells of this group only.

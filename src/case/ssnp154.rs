@@ -85,16 +85,19 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                 a: 6.2146,
                 p0: 3585.36,
             }),
+            curve: vec![],
             probe: vec![
                 ProbeSpec {
                     name: "DY_B".into(),
-                    group: "B".into(),
+                    group: Some("B".into()),
+                    at: None,
                     field: "dy".into(),
                     stress_group: None,
                 },
                 ProbeSpec {
                     name: "SIYY_B".into(),
-                    group: "B".into(),
+                    group: Some("B".into()),
+                    at: None,
                     field: "siyy".into(),
                     stress_group: Some("Block".into()),
                 },

@@ -48,6 +48,29 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             files.push(f.display().to_string());
         }
     }
+    for spec in &case.output.curve {
+        let nodes = crate::post::curve::chain(&mesh, &spec.group)?;
+        let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis\n");
+        for (n, s) in nodes {
+            let (x, st) = (mesh.coords[n], outcome.stress[n]);
+            text.push_str(&format!(
+                "{s},{},{},{},{},{},{},{},{},{},{}\n",
+                n + 1,
+                x[0],
+                x[1],
+                outcome.u[2 * n],
+                outcome.u[2 * n + 1],
+                st[0],
+                st[1],
+                st[2],
+                st[3],
+                crate::fem::material::von_mises(&st)
+            ));
+        }
+        let f = out_dir.join(format!("curve_{}.csv", spec.name));
+        write_atomic(&f, text.as_bytes())?;
+        files.push(f.display().to_string());
+    }
     let n_pairs = outcome.contact_pressure.len();
     for (i, pressures) in outcome.contact_pressure.iter().enumerate() {
         let stem = if n_pairs == 1 {

@@ -4,6 +4,7 @@
 //! |---|---|
 //! | `contact_picture.rs` | SVG of the deformed contact region coloured by von Mises |
 //! | `contact_pressure.rs` | tractions from surface stresses, half-width |
+//! | `curve.rs` | nodes of an edge group ordered by arc length |
 //! | `contact_state.rs` | gap and open/stick/slip status at the slave nodes |
 //! | `plot.rs` | dependency-free SVG plots |
 //! | `result_vtu.rs` | result fields of a state as VTU, a load history as a .pvd series |
@@ -13,6 +14,7 @@
 pub mod contact_picture;
 pub mod contact_pressure;
 pub mod contact_state;
+pub mod curve;
 pub mod plot;
 pub mod result_vtu;
 pub mod stress;
