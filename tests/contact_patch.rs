@@ -2,29 +2,19 @@
 //! uniform pressure. The exact contact pressure is uniform; the mortar formulation must
 //! reproduce it to 1e-8, for linear and quadratic cells.
 
+mod common;
+
+use common::{bodies, case_head};
 use tribo::case::{build_mesh, run, schema::CaseFile};
 use tribo::mesh::generate::rectangle;
-use tribo::mesh::{CellKind, MeshBuilder};
+use tribo::mesh::CellKind;
 
 const P: f64 = 25.0;
 
 fn case_text(formulation: &str, extra: &str) -> String {
+    let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
     format!(
-        r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
-[[material]]
-group = "LowerBody"
-E = 1000.0
-nu = 0.3
-[[material]]
-group = "UpperBody"
-E = 1000.0
-nu = 0.3
+        r#"{head}
 [[displacement]]
 group = "LowerBottom"
 dy = 0.0
@@ -59,10 +49,7 @@ fn patch(kind: CellKind, formulation: &str) -> f64 {
 fn pressures(kind: CellKind, formulation: &str, extra: &str) -> Vec<(f64, f64)> {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, kind, 0.0).unwrap();
     let upper = rectangle([0.0, 0.0], 2.0, 1.0, 5, 2, kind, 0.0).unwrap();
-    let mut b = MeshBuilder::new("two blocks");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    let mesh = b.finish().unwrap();
+    let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
     let case: CaseFile = toml::from_str(&case_text(formulation, extra)).unwrap();
     let _ = build_mesh; // the mesh is assembled here from two generated blocks
     let out = run(&case, &mesh, false).unwrap();
@@ -180,31 +167,14 @@ fn two_pairs_and_a_clamped_obstacle_carry_the_uniform_pressure() {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, CellKind::Quad4, 0.0).unwrap();
     let middle = rectangle([0.0, 0.0], 2.0, 1.0, 5, 2, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([0.0, 1.0], 2.0, 1.0, 4, 3, CellKind::Quad4, 0.0).unwrap();
-    let mut b = MeshBuilder::new("three blocks");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&middle, |g| format!("Middle{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    let mesh = b.finish().unwrap();
+    let mesh = bodies(&[("Lower", &lower), ("Middle", &middle), ("Upper", &upper)]);
+    let head = case_head(&[
+        ("LowerBody", 1000.0, 0.3),
+        ("MiddleBody", 500.0, 0.25),
+        ("UpperBody", 2000.0, 0.3),
+    ]);
     let text = format!(
-        r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
-[[material]]
-group = "LowerBody"
-E = 1000.0
-nu = 0.3
-[[material]]
-group = "MiddleBody"
-E = 500.0
-nu = 0.25
-[[material]]
-group = "UpperBody"
-E = 2000.0
-nu = 0.3
+        r#"{head}
 [[displacement]]
 group = "LowerBody"
 dx = 0.0
@@ -251,31 +221,15 @@ fn sliding_block_tangential_reaction_is_mu_times_normal() {
     for formulation in ["mortar", "point-to-segment"] {
         let lower = rectangle([-1.0, -1.0], 4.0, 1.0, 8, 2, CellKind::Quad4, 0.0).unwrap();
         let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5, 3, CellKind::Quad4, 0.0).unwrap();
-        let mut b = MeshBuilder::new("sliding block");
-        b.append(&lower, |g| format!("Lower{g}"));
-        b.append(&upper, |g| format!("Upper{g}"));
-        let mesh = b.finish().unwrap();
+        let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
         let extra = if formulation == "mortar" {
             ""
         } else {
             "integration = \"nodal\""
         };
+        let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
         let text = format!(
-            r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
-[[material]]
-group = "LowerBody"
-E = 1000.0
-nu = 0.3
-[[material]]
-group = "UpperBody"
-E = 1000.0
-nu = 0.3
+            r#"{head}
 [[displacement]]
 group = "LowerBody"
 dx = 0.0

@@ -3,9 +3,12 @@
 //! one step. Contact pressure and radial displacements against the Lamé solution (0.5 %,
 //! quadratic cells, non-matching interface, mortar).
 
+mod common;
+
+use common::{bodies, case_head};
 use tribo::case::{run, schema::CaseFile};
 use tribo::mesh::generate::ring;
-use tribo::mesh::{CellKind, MeshBuilder};
+use tribo::mesh::CellKind;
 
 const E: f64 = 200_000.0;
 const NU: f64 = 0.3;
@@ -36,29 +39,13 @@ fn shrink_fit_matches_lame() {
     let p = DELTA / per_unit;
     let inner = ring(A, B + DELTA, 6, 24, 90.0, CellKind::Quad8).unwrap();
     let outer = ring(B, C, 8, 31, 90.0, CellKind::Quad8).unwrap();
-    let mut b = MeshBuilder::new("rings");
-    b.append(&inner, |g| format!("In{g}"));
-    b.append(&outer, |g| format!("Out{g}"));
-    let mesh = b.finish().unwrap();
+    let mesh = bodies(&[("In", &inner), ("Out", &outer)]);
+    let head = case_head(&[("InBody", E, NU), ("OutBody", E, NU)]);
     let text = format!(
-        r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
+        r#"{head}
 [model]
 modelisation = "plane_strain"
 kinematics = "small"
-[[material]]
-group = "InBody"
-E = {E}
-nu = {NU}
-[[material]]
-group = "OutBody"
-E = {E}
-nu = {NU}
 [[displacement]]
 group = "InStart"
 dy = 0.0

@@ -67,3 +67,27 @@ pub fn fitted_rate(h: &[f64], err: &[f64]) -> f64 {
     let sxx: f64 = lx.iter().map(|x| (x - mx).powi(2)).sum();
     sxy / sxx
 }
+
+/// The head of a case file whose mesh the test builds itself (`case::run` takes the mesh
+/// apart from the case): a placeholder [mesh] table and one [[material]] per
+/// (group, E, nu).
+pub fn case_head(materials: &[(&str, f64, f64)]) -> String {
+    let mut s = String::from(
+        "[mesh]\ngenerator = \"rectangle\"\nwidth = 1.0\nheight = 1.0\nnx = 1\nny = 1\n",
+    );
+    for (g, e, nu) in materials {
+        s.push_str(&format!(
+            "[[material]]\ngroup = \"{g}\"\nE = {e:?}\nnu = {nu:?}\n"
+        ));
+    }
+    s
+}
+
+/// Bodies side by side in one mesh, their groups prefixed with the given names.
+pub fn bodies(parts: &[(&str, &Mesh)]) -> Mesh {
+    let mut b = tribo::mesh::MeshBuilder::new("bodies");
+    for (prefix, m) in parts {
+        b.append(m, |g| format!("{prefix}{g}"));
+    }
+    b.finish().unwrap()
+}
