@@ -15,6 +15,13 @@ fn report_plots_are_the_computed_data() {
     let c = ssnp154::contact_case("C", spec, None);
     let out = case::run(&c, &mesh, false).unwrap();
     let dy = out.probes.iter().find(|p| p.0 == "DY_B").unwrap().1;
+    // what the pressure plot must show as "multipliers": the solver's nodal pressures
+    let mut expected: Vec<(f64, f64)> = out.contact_pressure[0]
+        .iter()
+        .map(|&(n, p)| (mesh.coords[n][0], p))
+        .filter(|p| p.0 <= 1.6 * 6.2146)
+        .collect();
+    expected.sort_by(|a, b| a.0.total_cmp(&b.0));
     let row = Row {
         id: "C".into(),
         setup: "test".into(),
@@ -86,6 +93,19 @@ fn report_plots_are_the_computed_data() {
             }
         }
     }
+    let csv = std::fs::read_to_string(dir.join("C_pressure.csv")).unwrap();
+    let plotted: Vec<(f64, f64)> = csv
+        .lines()
+        .filter(|l| l.starts_with("multipliers,"))
+        .map(|l| {
+            let f: Vec<&str> = l.split(',').collect();
+            (f[1].parse().unwrap(), f[2].parse().unwrap())
+        })
+        .collect();
+    assert_eq!(
+        plotted, expected,
+        "the CSV holds the solver's multiplier pressures"
+    );
     let shear = std::fs::read_to_string(dir.join("C_shear.svg")).unwrap();
     assert!(
         shear.contains("class=\"band\" data-label=\"stick\""),
