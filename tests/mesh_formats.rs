@@ -195,6 +195,7 @@ fn med_file(edit: impl FnOnce(&mut Parts)) -> Vec<u8> {
         cell_fam: vec![-1],
         families: true,
         ens: true,
+        step_group: true,
     };
     edit(&mut p);
     let mut fb = FileBuilder::new();
@@ -203,7 +204,12 @@ fn med_file(edit: impl FnOnce(&mut Parts)) -> Vec<u8> {
         let mut m = ens.create_group("M");
         m.set_attr("ESP", AttrValue::I64(p.space_dim));
         m.set_attr("TYP", AttrValue::I64(0));
-        let mut s = m.create_group("-0000000000000000001-0000000000000000001");
+        // MED 3/4: NOE and MAI in a computation-step group; MED 2: directly in the mesh
+        let mut s = if p.step_group {
+            m.create_group("-0000000000000000001-0000000000000000001")
+        } else {
+            std::mem::replace(&mut m, ens.create_group("unused"))
+        };
         let mut noe = s.create_group("NOE");
         let n = p.coo.len() as i64 / p.space_dim;
         noe.create_dataset("COO")
@@ -221,8 +227,12 @@ fn med_file(edit: impl FnOnce(&mut Parts)) -> Vec<u8> {
             .set_attr("NBR", AttrValue::I64(nc));
         mai.add_group(t.finish());
         s.add_group(mai.finish());
-        m.add_group(s.finish());
-        ens.add_group(m.finish());
+        if p.step_group {
+            m.add_group(s.finish());
+            ens.add_group(m.finish());
+        } else {
+            ens.add_group(s.finish());
+        }
         fb.add_group(ens.finish());
     }
     if p.families {
@@ -253,6 +263,7 @@ struct Parts {
     cell_fam: Vec<i64>,
     families: bool,
     ens: bool,
+    step_group: bool,
 }
 
 fn med_err(edit: impl FnOnce(&mut Parts)) -> String {
@@ -268,6 +279,10 @@ fn hand_built_med_file_reads_counter_clockwise() {
     assert_eq!(m.cell_nodes(0), &[0, 1, 2, 3]);
     assert_eq!(m.reoriented, 0);
     assert_eq!(m.cell_groups["Plate"], vec![0]);
+    // MED 2.x layout: no computation-step group
+    let m2 = med::parse(med_file(|p| p.step_group = false), "med2.med").unwrap();
+    assert_eq!(m2.cell_nodes(0), &[0, 1, 2, 3]);
+    assert_eq!(m2.cell_groups["Plate"], vec![0]);
     // Space dimension 3 with z = 0, as Salome writes planar meshes.
     let m = med::parse(
         med_file(|p| {
