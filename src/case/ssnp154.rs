@@ -15,6 +15,11 @@ pub const REFERENCES: [(&str, bool, f64, f64); 6] = [
     ("F", true, -1.3080923611548, -3502.7937782466),
 ];
 
+/// Hertz line contact of SSNP154 (small-strain half-spaces): half-width a (mm), peak p0
+/// (MPa).
+pub const HERTZ_A: f64 = 6.2146;
+pub const HERTZ_P0: f64 = 3585.36;
+
 /// The benchmark's bodies, supports and load, with B and C glued in y (DY(B) = DY(C))
 /// instead of contact: the elastic stage that runs before contact exists.
 pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
@@ -82,8 +87,8 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
             // validate, study and the benches write no VTU (nor keep per-step states)
             vtu: false,
             hertz: Some(HertzSpec {
-                a: 6.2146,
-                p0: 3585.36,
+                a: HERTZ_A,
+                p0: HERTZ_P0,
             }),
             curve: vec![],
             probe: vec![

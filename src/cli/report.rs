@@ -16,8 +16,8 @@ use crate::post::plot::{self, escape, Band, Options, Series};
 use std::fmt::Write;
 use std::path::Path;
 
-const A: f64 = 6.2146;
-const P0: f64 = 3585.36;
+use crate::case::ssnp154::{HERTZ_A as A, HERTZ_P0 as P0};
+use crate::post::contact_pressure::hertz_pressure;
 
 /// One checked value of the table.
 pub struct Check {
@@ -39,14 +39,6 @@ pub struct Row {
     pub outcome: Outcome,
     pub checks: Vec<Check>,
     pub wall: f64,
-}
-
-fn hertz(x: f64) -> f64 {
-    if x.abs() < A {
-        P0 * (1.0 - (x / A).powi(2)).sqrt()
-    } else {
-        0.0
-    }
 }
 
 /// Writes a plot as DIR/NAME.svg and its data as DIR/NAME.csv (series,x,y); returns the SVG.
@@ -120,7 +112,7 @@ fn row_section(dir: &Path, row: &Row, html: &mut String) -> Result<()> {
     let curve: Vec<(f64, f64)> = (0..=200)
         .map(|k| {
             let x = xmax * k as f64 / 200.0;
-            (x, hertz(x))
+            (x, hertz_pressure(A, P0, x))
         })
         .collect();
     let series = [

@@ -79,13 +79,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             format!("pressure_{}", i + 1)
         };
         let hertz = |x: f64| {
-            case.output.hertz.as_ref().map(|h| {
-                if x.abs() < h.a {
-                    h.p0 * (1.0 - (x / h.a).powi(2)).sqrt()
-                } else {
-                    0.0
-                }
-            })
+            case.output
+                .hertz
+                .as_ref()
+                .map(|h| crate::post::contact_pressure::hertz_pressure(h.a, h.p0, x))
         };
         let mut rows: Vec<(f64, usize, f64)> = pressures
             .iter()

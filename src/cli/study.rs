@@ -17,8 +17,8 @@ use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
 
-const A: f64 = 6.2146;
-const P0: f64 = 3585.36;
+use crate::case::ssnp154::{HERTZ_A as A, HERTZ_P0 as P0};
+use crate::post::contact_pressure::hertz_pressure;
 
 /// One refinement level's results.
 struct Level {
@@ -294,7 +294,7 @@ pub fn l2_error(samples: &[(f64, f64)]) -> f64 {
     if samples.len() < 2 {
         return f64::NAN;
     }
-    let hertz = |x: f64| P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt();
+    let hertz = |x: f64| hertz_pressure(A, P0, x);
     relative_l2(profile(samples), hertz, loaded_end(samples))
 }
 
@@ -339,7 +339,7 @@ mod tests {
         let fine: Vec<(f64, f64)> = (0..=40)
             .map(|k| {
                 let x = 8.0 * k as f64 / 40.0;
-                (x, P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt())
+                (x, hertz_pressure(A, P0, x))
             })
             .collect();
         assert_eq!(profile_change(&fine, &fine), 0.0);
@@ -365,7 +365,7 @@ mod tests {
             (0..=n)
                 .map(|i| {
                     let x = i as f64 * h;
-                    (x, P0 * (1.0 - (x / A).powi(2)).max(0.0).sqrt())
+                    (x, hertz_pressure(A, P0, x))
                 })
                 .collect()
         };

@@ -9,6 +9,7 @@
 
 use crate::case::{self, ssnp154};
 use crate::error::{write_atomic, Result};
+use crate::post::contact_pressure::hertz_pressure;
 use serde_json::json;
 use std::path::Path;
 use std::time::Instant;
@@ -236,7 +237,7 @@ fn hertz_deviation(
     pressures: &[(usize, f64)],
     deformed: Option<bool>,
 ) -> f64 {
-    let (a, p0) = (6.2146, 3585.36);
+    let (a, p0) = (ssnp154::HERTZ_A, ssnp154::HERTZ_P0);
     let profile: Vec<(f64, f64)> = if let Some(nominal) = deformed {
         crate::post::contact_pressure::deformed_profile(mesh, u, pressures, nominal)
     } else {
@@ -248,7 +249,7 @@ fn hertz_deviation(
     profile
         .iter()
         .filter(|(x, _)| x.abs() < 0.9 * a)
-        .map(|&(x, p)| (p - p0 * (1.0 - (x / a).powi(2)).sqrt()).abs() / p0)
+        .map(|&(x, p)| (p - hertz_pressure(a, p0, x)).abs() / p0)
         .fold(0.0, f64::max)
 }
 

@@ -5,6 +5,15 @@
 use crate::contact::surface::Surface;
 use crate::mesh::Mesh;
 
+/// The Hertz line-contact pressure p0 √(1 − x²/a²) inside the half-width a, 0 outside.
+pub fn hertz_pressure(a: f64, p0: f64, x: f64) -> f64 {
+    if x.abs() < a {
+        p0 * (1.0 - (x / a).powi(2)).sqrt()
+    } else {
+        0.0
+    }
+}
+
 /// Unit outward normal at each node of a surface: mean of the adjacent edges' normals
 /// (of the reference geometry, or of the deformed one when `u` is given).
 pub fn nodal_normals(mesh: &Mesh, surface: &Surface, u: Option<&[f64]>) -> Vec<(usize, [f64; 2])> {
