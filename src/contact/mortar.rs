@@ -57,11 +57,11 @@ pub struct Mortar {
     pub friction_excluded: Vec<usize>,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
-    /// Friction law per node at the last status update (0 none, 1 stick, 2 slip +, 3 slip −),
-    /// and at the start of the step: a change is a status change, so Newton does not stop
-    /// on balanced displacement rows while the friction rows follow another branch.
-    law: Vec<u8>,
-    saved_law: Vec<u8>,
+    /// Friction branch per node at the last status update, and at the start of the step: a
+    /// change is a status change, so Newton does not stop on balanced displacement rows
+    /// while the friction rows follow another branch.
+    law: Vec<Branch>,
+    saved_law: Vec<Branch>,
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
     last_d: std::cell::RefCell<Vec<f64>>,
     /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
@@ -81,6 +81,15 @@ struct CellTerms {
     /// and tangential force coefficients per unit traction t_j.
     slip: Vec<(usize, f64)>,
     tforce: Vec<(usize, usize, f64)>,
+}
+
+/// The Coulomb branch of a slave node: no friction (no contact or no pressure), stick, or
+/// slip with the sign of the trial traction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Branch {
+    Free,
+    Stick,
+    Slip(f64),
 }
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -466,6 +475,22 @@ impl Mortar {
         false
     }
 
+    /// The branch of node j at (λ, t) = (lam[j], lam[nm + j]) with weighted slip `slip` and
+    /// D_j = `d`; `lmax` is the largest |λ|. `contribute` and `update_status` both use it.
+    fn branch(&self, j: usize, lam: &[f64], slip: f64, d: f64, lmax: f64, mu: f64) -> Branch {
+        let nm = self.mult_nodes.len();
+        let pressure = lam[j];
+        if !self.active[j] || self.friction_excluded.contains(&j) || pressure <= 1e-8 * lmax {
+            return Branch::Free;
+        }
+        let trial = lam[nm + j] + self.c * slip / d;
+        if trial.abs() <= mu * pressure {
+            Branch::Stick
+        } else {
+            Branch::Slip(trial.signum())
+        }
+    }
+
     fn measure(&self, p: [f64; 2]) -> f64 {
         if self.axisymmetric {
             2.0 * std::f64::consts::PI * p[0]
@@ -608,8 +633,7 @@ impl ContactPair for Mortar {
         // stick (|trial| ≤ μ λ_j): s̃_j = 0; slip: t_j = μ λ_j sign(trial). Rows scaled by
         // D_j / c like the normal ones.
         let mut sl = vec![0.0; nm];
-        // per node: 0 no friction, 1 stick, 2 slip; the sign of the trial
-        let mut law = vec![(0u8, 0.0f64); nm];
+        let mut law = vec![Branch::Free; nm];
         if let Some(mu) = self.friction {
             let mut tf: Vec<Vec<(usize, f64)>> = vec![vec![]; nm];
             for t in &terms {
@@ -628,24 +652,19 @@ impl ContactPair for Mortar {
                     ru[dof] += tj * v;
                     k.add(dof, row, v);
                 }
-                let pressure = lam[j];
-                if !self.active[j] || self.friction_excluded.contains(&j) || pressure <= 1e-8 * lmax
-                {
-                    rl[nm + j] += -tj * d[j] / self.c;
-                    k.add(row, row, -d[j] / self.c);
-                    continue;
-                }
-                let trial = tj + self.c * sl[j] / d[j];
-                if trial.abs() <= mu * pressure {
-                    law[j] = (1, 0.0);
-                    rl[nm + j] += -sl[j];
-                } else {
-                    let sg = trial.signum();
-                    law[j] = (2, sg);
-                    let scale = d[j] / self.c;
-                    rl[nm + j] += -(tj - mu * pressure * sg) * scale;
-                    k.add(row, row, -scale);
-                    k.add(row, ndof + mult_base + j, mu * sg * scale);
+                law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
+                match law[j] {
+                    Branch::Free => {
+                        rl[nm + j] += -tj * d[j] / self.c;
+                        k.add(row, row, -d[j] / self.c);
+                    }
+                    Branch::Stick => rl[nm + j] += -sl[j],
+                    Branch::Slip(sg) => {
+                        let scale = d[j] / self.c;
+                        rl[nm + j] += -(tj - mu * lam[j] * sg) * scale;
+                        k.add(row, row, -scale);
+                        k.add(row, ndof + mult_base + j, mu * sg * scale);
+                    }
                 }
             }
         }
@@ -690,9 +709,9 @@ impl ContactPair for Mortar {
                 for j in 0..nm {
                     let row = ndof + mult_base + nm + j;
                     let v = match law[j] {
-                        (1, _) => -ds[j],
-                        (2, sg) => -(lam[nm + j] - mu * lam[j] * sg) / self.c * dd[j],
-                        _ => -lam[nm + j] / self.c * dd[j],
+                        Branch::Stick => -ds[j],
+                        Branch::Slip(sg) => -(lam[nm + j] - mu * lam[j] * sg) / self.c * dd[j],
+                        Branch::Free => -lam[nm + j] / self.c * dd[j],
                     };
                     if v != 0.0 {
                         k.add(row, dof, v);
@@ -763,27 +782,12 @@ impl ContactPair for Mortar {
             }
         }
         if let Some(mu) = self.friction {
-            // the branch `contribute` will take at this iterate (same rule)
+            // the branch `contribute` takes at this iterate
             let nm = self.mult_nodes.len();
-            self.law.resize(nm, 0);
+            self.law.resize(nm, Branch::Free);
             let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for j in 0..nm {
-                let pressure = lam[j];
-                let law = if !self.active[j]
-                    || self.friction_excluded.contains(&j)
-                    || pressure <= 1e-8 * lmax
-                {
-                    0
-                } else {
-                    let trial = lam[nm + j] + self.c * sl[j] / d[j];
-                    if trial.abs() <= mu * pressure {
-                        1
-                    } else if trial > 0.0 {
-                        2
-                    } else {
-                        3
-                    }
-                };
+                let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 if law != self.law[j] {
                     changes += 1;
                     self.law[j] = law;
