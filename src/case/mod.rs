@@ -320,29 +320,13 @@ fn contact_tractions(
     Vec<(f64, Vec<(usize, f64)>)>,
     Vec<Multipliers>,
 ) {
-    let pressures = cp
-        .pairs
-        .iter()
-        .zip(&cp.mult_base)
-        .map(|(p, &b)| p.nodal_pressures(&cp.lam[b..b + p.num_multipliers()]))
-        .collect();
-    let shear = cp
-        .pairs
-        .iter()
-        .zip(&cp.mult_base)
-        .map(|(p, &b)| {
-            (
-                p.friction(),
-                p.nodal_shear(&cp.lam[b..b + p.num_multipliers()]),
-            )
-        })
-        .collect();
-    let multipliers = cp
-        .pairs
-        .iter()
-        .zip(&cp.mult_base)
-        .map(|(p, &b)| p.nodal_multipliers(&cp.lam[b..b + p.num_multipliers()]))
-        .collect();
+    let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
+    for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
+        let lam = &cp.lam[b..b + p.num_multipliers()];
+        pressures.push(p.nodal_pressures(lam));
+        shear.push((p.friction(), p.nodal_shear(lam)));
+        multipliers.push(p.nodal_multipliers(lam));
+    }
     (pressures, shear, multipliers)
 }
 
@@ -453,6 +437,7 @@ fn group_nodes(mesh: &Mesh, groups: &[String], what: &str, key: &str) -> Result<
 
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
+    let bodies = crate::mesh::topology::node_bodies(mesh);
     for (i, c) in case.contact.iter().enumerate() {
         let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
         if c.slave == c.master {
@@ -466,7 +451,6 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
         // Checked after the options, so that their errors come first.
         let same_body = || -> Result<()> {
-            let bodies = crate::mesh::topology::node_bodies(mesh);
             let of = |s: &Surface| -> std::collections::BTreeSet<usize> {
                 s.nodes.iter().map(|&n| bodies[n]).collect()
             };
