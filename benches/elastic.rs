@@ -87,7 +87,9 @@ fn main() {
         lin.factor(&p.asm.matrix).unwrap();
         let t_refac = t2.elapsed().as_secs_f64();
         let mut rhs = vec![0.0; p.num_free()];
-        p.asm.dofs.reduce(&p.fext, &mut rhs);
+        let mut fext = vec![0.0; p.u.len()];
+        p.loading.forces_at(1.0, &mut fext);
+        p.asm.dofs.reduce(&fext, &mut rhs);
         let t3 = Instant::now();
         lin.solve(&mut rhs).unwrap();
         let t_solve = t3.elapsed().as_secs_f64();

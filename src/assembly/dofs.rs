@@ -1,10 +1,11 @@
 //! `DofMap`: which displacement dofs are free unknowns, imposed (eliminated, with
 //! reactions recovered) or linked to others by linear relations (eliminated too).
 //!
-//! Dof d of node n is 2n + component. The full displacement is u = T x + λ g, where x are
-//! the free unknowns, λ the load factor and g the imposed values; relations
-//! Σ a_i u_i = b are solved for one of their dofs (the one with the largest coefficient
-//! after substitution), so the reduced system stays symmetric: Tᵀ K T.
+//! Dof d of node n is 2n + component. The full displacement is u = T x + G g, where x are
+//! the free unknowns and g the imposed values at the current time (one per dof, then one
+//! per relation right-hand side); relations Σ a_i u_i = b are solved for one of their dofs
+//! (the one with the largest coefficient after substitution), so the reduced system stays
+//! symmetric: Tᵀ K T.
 
 use crate::error::{Error, Result};
 
@@ -15,11 +16,21 @@ pub enum Role {
     Linked(usize),
 }
 
-/// u_d = Σ c_k x_k + λ · constant.
+/// u_d = Σ c_k x_k + Σ s_j g_j: free unknowns x and imposed values g (see `expand`).
 #[derive(Clone, Debug, Default)]
 pub struct LinkExpr {
     pub terms: Vec<(usize, f64)>,
-    pub constant: f64,
+    pub sources: Vec<(usize, f64)>,
+}
+
+/// Adds c · `from` to `into`, merging equal indices.
+fn add_scaled(into: &mut Vec<(usize, f64)>, from: &[(usize, f64)], c: f64) {
+    for &(k, ck) in from {
+        match into.iter_mut().find(|t| t.0 == k) {
+            Some(t) => t.1 += c * ck,
+            None => into.push((k, c * ck)),
+        }
+    }
 }
 
 /// A linear relation between dofs: Σ coef · u_dof = rhs. `name` appears in errors.
@@ -35,6 +46,8 @@ pub struct DofMap {
     pub roles: Vec<Role>,
     /// Imposed value of each Fixed dof at load factor 1 (0 elsewhere).
     pub prescribed: Vec<f64>,
+    /// Right-hand side of each relation at load factor 1.
+    pub rhs: Vec<f64>,
     pub exprs: Vec<LinkExpr>,
     pub num_free: usize,
 }
@@ -54,14 +67,22 @@ impl DofMap {
         }
         // Expressions over raw dof ids that are still free.
         let mut link: Vec<Option<LinkExpr>> = vec![None; n];
-        for rel in relations {
+        // value of source j (imposed dof, then relation rhs) at load factor 1
+        let source_value = |j: usize, fixed_val: &[Option<f64>]| -> f64 {
+            if j < n {
+                fixed_val[j].unwrap_or(0.0)
+            } else {
+                relations[j - n].rhs
+            }
+        };
+        for (r, rel) in relations.iter().enumerate() {
             let mut terms: Vec<(usize, f64)> = vec![];
-            let mut rhs = rel.rhs;
+            let mut sources: Vec<(usize, f64)> = vec![(n + r, 1.0)];
             for &(d, a) in &rel.terms {
-                if let Some(v) = fixed_val[d] {
-                    rhs -= a * v;
+                if fixed_val[d].is_some() {
+                    add_scaled(&mut sources, &[(d, 1.0)], -a);
                 } else if let Some(e) = &link[d] {
-                    rhs -= a * e.constant;
+                    add_scaled(&mut sources, &e.sources, -a);
                     for &(k, c) in &e.terms {
                         terms.push((k, a * c));
                     }
@@ -81,6 +102,10 @@ impl DofMap {
             merged.retain(|t| t.1.abs() > 1e-12 * scale);
             let Some(&(pivot, a_p)) = merged.iter().max_by(|x, y| x.1.abs().total_cmp(&y.1.abs()))
             else {
+                let rhs: f64 = sources
+                    .iter()
+                    .map(|&(j, c)| c * source_value(j, &fixed_val))
+                    .sum();
                 if rhs.abs() > 1e-12 * (1.0 + rel.rhs.abs()) {
                     return Err(Error::model(format!(
                         "relation '{}' contradicts the imposed displacements or earlier relations",
@@ -95,19 +120,14 @@ impl DofMap {
                     .filter(|t| t.0 != pivot)
                     .map(|&(k, c)| (k, -c / a_p))
                     .collect(),
-                constant: rhs / a_p,
+                sources: sources.iter().map(|&(j, c)| (j, c / a_p)).collect(),
             };
             // Substitute the new link into the existing ones that use the pivot.
             for e in link.iter_mut().flatten() {
                 if let Some(pos) = e.terms.iter().position(|t| t.0 == pivot) {
                     let c = e.terms.remove(pos).1;
-                    e.constant += c * expr.constant;
-                    for &(k, ck) in &expr.terms {
-                        match e.terms.iter_mut().find(|t| t.0 == k) {
-                            Some(t) => t.1 += c * ck,
-                            None => e.terms.push((k, c * ck)),
-                        }
-                    }
+                    add_scaled(&mut e.sources, &expr.sources, c);
+                    add_scaled(&mut e.terms, &expr.terms, c);
                 }
             }
             link[pivot] = Some(expr);
@@ -128,7 +148,7 @@ impl DofMap {
                 roles[d] = Role::Linked(exprs.len());
                 exprs.push(LinkExpr {
                     terms: e.terms.iter().map(|&(k, c)| (free_index[k], c)).collect(),
-                    constant: e.constant,
+                    sources: e.sources,
                 });
             }
         }
@@ -136,6 +156,7 @@ impl DofMap {
         Ok(DofMap {
             roles,
             prescribed,
+            rhs: relations.iter().map(|r| r.rhs).collect(),
             exprs,
             num_free,
         })
@@ -145,18 +166,29 @@ impl DofMap {
         self.roles.len()
     }
 
-    /// Full displacement vector from the free unknowns at load factor `lambda`.
-    pub fn expand(&self, x: &[f64], lambda: f64, u: &mut [f64]) {
+    /// Full displacement vector from the free unknowns `x` and the imposed values `g`: one
+    /// per dof (read at the Fixed dofs), then one per relation right-hand side.
+    pub fn expand(&self, x: &[f64], g: &[f64], u: &mut [f64]) {
         for (d, role) in self.roles.iter().enumerate() {
             u[d] = match *role {
                 Role::Free(j) => x[j],
-                Role::Fixed => lambda * self.prescribed[d],
+                Role::Fixed => g[d],
                 Role::Linked(e) => {
                     let e = &self.exprs[e];
-                    lambda * e.constant + e.terms.iter().map(|&(k, c)| c * x[k]).sum::<f64>()
+                    e.sources.iter().map(|&(j, c)| c * g[j]).sum::<f64>()
+                        + e.terms.iter().map(|&(k, c)| c * x[k]).sum::<f64>()
                 }
             };
         }
+    }
+
+    /// The imposed values of `expand` when everything is proportional to the load factor.
+    pub fn proportional_values(&self, lambda: f64) -> Vec<f64> {
+        self.prescribed
+            .iter()
+            .chain(&self.rhs)
+            .map(|v| lambda * v)
+            .collect()
     }
 
     /// Free unknowns read back from a full vector.
@@ -219,7 +251,7 @@ mod tests {
         assert_eq!(m.num_free, 1);
         let x = vec![0.7];
         let mut u = vec![0.0; 4];
-        m.expand(&x, 1.0, &mut u);
+        m.expand(&x, &m.proportional_values(1.0), &mut u);
         assert!((u[0] - 2.0).abs() < 1e-15);
         assert!((u[1] - u[2]).abs() < 1e-15);
         assert!((u[2] + u[0] - u[3] - 1.0).abs() < 1e-15);

@@ -3,13 +3,14 @@
 //! | file | what |
 //! |---|---|
 //! | `schema.rs` | serde structs of the TOML format (unknown keys rejected) |
+//! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
 
+pub mod loading;
 pub mod schema;
 pub mod ssnp154;
 
 use crate::assembly::dofs::{DofMap, Relation};
-use crate::assembly::loads::{add_edge_load, add_nodal_force, EdgeLoad};
 use crate::assembly::Assembler;
 use crate::contact::mortar::Mortar;
 use crate::contact::pair::ContactPair;
@@ -187,20 +188,7 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
             used[2 * n + 1] = true;
         }
     }
-    let mut fixed = vec![];
-    for spec in &case.displacement {
-        let nodes = mesh
-            .node_group(&spec.group)
-            .map_err(|e| Error::model(format!("[[displacement]]: {e}")))?;
-        for &n in &nodes {
-            if let Some(v) = spec.dx {
-                fixed.push((2 * n, v));
-            }
-            if let Some(v) = spec.dy {
-                fixed.push((2 * n + 1, v));
-            }
-        }
-    }
+    let (fixed, loading) = loading::build(case, mesh)?;
     let mut relations = vec![];
     for (i, spec) in case.relation.iter().enumerate() {
         let name = if spec.name.is_empty() {
@@ -223,38 +211,9 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
         });
     }
     let dofs = DofMap::new(&used, &fixed, &relations)?;
-    let mut fext = vec![0.0; ndof];
-    for spec in &case.force {
-        let nodes = mesh
-            .node_group(&spec.group)
-            .map_err(|e| Error::model(format!("[[force]]: {e}")))?;
-        add_nodal_force(&mut fext, &nodes, [spec.fx, spec.fy]);
-    }
-    for spec in &case.pressure {
-        add_edge_load(
-            mesh,
-            &spec.group,
-            EdgeLoad::Pressure(spec.p),
-            m.modelisation,
-            m.thickness,
-            &mut fext,
-        )
-        .map_err(|e| Error::model(format!("[[pressure]]: {e}")))?;
-    }
-    for spec in &case.traction {
-        add_edge_load(
-            mesh,
-            &spec.group,
-            EdgeLoad::Traction([spec.tx, spec.ty]),
-            m.modelisation,
-            m.thickness,
-            &mut fext,
-        )
-        .map_err(|e| Error::model(format!("[[traction]]: {e}")))?;
-    }
     // Without contact the matrix is SPD: Cholesky reads the lower triangle only.
     let asm = Assembler::new(mesh, cells, models, dofs, case.contact.is_empty())?;
-    Ok(SolidProblem::new(mesh, asm, fext))
+    Ok(SolidProblem::with_loading(mesh, asm, loading))
 }
 
 /// What a run produces.
@@ -279,7 +238,8 @@ pub struct Outcome {
 
 /// The fields of one converged load step.
 pub struct StepOutcome {
-    pub load_factor: f64,
+    pub time: f64,
+    pub probes: Vec<(String, f64)>,
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     pub stress: Vec<[f64; 4]>,
@@ -292,18 +252,25 @@ pub struct StepOutcome {
 pub type Multipliers = Vec<(usize, [f64; 2])>;
 
 fn step_outcome(
+    case: &CaseFile,
     mesh: &Mesh,
     solid: &SolidProblem,
-    load_factor: f64,
+    time: f64,
     contact_pressure: Vec<Vec<(usize, f64)>>,
     contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
 ) -> Result<StepOutcome> {
     let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
+    let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
+    let mut probes = vec![];
+    for p in &case.output.probe {
+        probes.push((p.name.clone(), probe(solid, p, &stress)?));
+    }
     Ok(StepOutcome {
-        load_factor,
+        time,
+        probes,
         u: solid.u.clone(),
         reactions: solid.reactions(),
-        stress: nodal_stresses(mesh, &solid.asm, &elno, None)?,
+        stress,
         contact_pressure,
         contact_shear,
         contact_multipliers: vec![],
@@ -602,6 +569,24 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
     Ok(pairs)
 }
 
+/// The converged states at output times, and the final state (last, so that evaluating
+/// them in order leaves the problem in its final state), each with whether it is an output.
+fn output_states(
+    mut states: Vec<(f64, Vec<f64>)>,
+    is_output: impl Fn(f64) -> bool,
+) -> Vec<(f64, Vec<f64>, bool)> {
+    let last = states.pop();
+    let mut out: Vec<(f64, Vec<f64>, bool)> = states
+        .into_iter()
+        .filter(|s| is_output(s.0))
+        .map(|(t, x)| (t, x, true))
+        .collect();
+    if let Some((t, x)) = last {
+        out.push((t, x, is_output(t)));
+    }
+    out
+}
+
 /// Solves a case on a mesh.
 pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     let mut problem = build_problem(case, mesh)?;
@@ -617,23 +602,34 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
                 .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
         }
     }
+    let (times, output_times) = loading::schedule(case, &problem.loading)?;
     let settings = NewtonSettings {
         steps: case.solver.steps.max(1),
+        times,
         tolerance: case.solver.tolerance,
         max_iterations: case.solver.max_iterations,
         verbose,
-        keep_states: case.output.vtu,
+        keep_states: case.output.history,
         ..Default::default()
+    };
+    let end = *settings.times.last().unwrap_or(&1.0);
+    // the converged states that are output times (all of them by default)
+    let is_output = |t: f64| {
+        output_times
+            .as_ref()
+            .is_none_or(|o| o.iter().any(|&x| (x - t).abs() <= 1e-9 * end))
     };
     let mut steps = vec![];
     let mut contact_multipliers = vec![];
     let (report, contact_pressure, contact_surfaces, contact_shear) = if case.contact.is_empty() {
         let mut report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
-        let states = std::mem::take(&mut report.states);
+        let states = output_states(std::mem::take(&mut report.states), is_output);
         let mut r = vec![0.0; problem.num_unknowns()];
-        for (lf, x) in &states {
+        for (lf, x, output) in &states {
             problem.evaluate(x, *lf, &mut r, false)?;
-            steps.push(step_outcome(mesh, &problem, *lf, vec![], vec![])?);
+            if *output {
+                steps.push(step_outcome(case, mesh, &problem, *lf, vec![], vec![])?);
+            }
         }
         (report, vec![], vec![], vec![])
     } else {
@@ -646,12 +642,15 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
         let mut report = newton::solve(&mut cp, &settings, method)?;
         // Outputs of each converged step; the last state is the final one, so the problem
         // is left where the solve left it.
-        let states = std::mem::take(&mut report.states);
+        let states = output_states(std::mem::take(&mut report.states), is_output);
         let mut r = vec![0.0; cp.num_unknowns()];
-        for (lf, x) in &states {
+        for (lf, x, output) in &states {
             cp.evaluate(x, *lf, &mut r, false)?;
+            if !output {
+                continue;
+            }
             let (p, sh, m) = contact_tractions(&cp);
-            let mut step = step_outcome(mesh, &cp.solid, *lf, p, sh)?;
+            let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
             step.contact_multipliers = m;
             steps.push(step);
         }

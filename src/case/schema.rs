@@ -16,8 +16,14 @@ pub struct CaseFile {
     pub model: ModelSpec,
     #[serde(default)]
     pub material: Vec<MaterialSpec>,
+    /// Time functions that loads and imposed displacements refer to by name.
+    #[serde(default)]
+    pub function: Vec<FunctionSpec>,
     #[serde(default)]
     pub displacement: Vec<DisplacementSpec>,
+    /// Rigid motions (rotation, translation) imposed on the nodes of a group.
+    #[serde(default)]
+    pub rotation: Vec<RotationSpec>,
     #[serde(default)]
     pub force: Vec<ForceSpec>,
     #[serde(default)]
@@ -103,12 +109,39 @@ pub struct MaterialSpec {
     pub nu: f64,
 }
 
+/// A piecewise-linear function of time: `table = [[t0, v0], [t1, v1], ...]`, times
+/// increasing strictly; constant before the first and after the last point.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct FunctionSpec {
+    pub name: String,
+    pub table: Vec<[f64; 2]>,
+}
+
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
     pub group: String,
     pub dx: Option<f64>,
     pub dy: Option<f64>,
+    /// Time function scaling the values (default: f(t) = t).
+    pub function: Option<String>,
+}
+
+/// u = R(angle · f(t)) (X − center) + center + (dx, dy) · f(t) − X on every node of the
+/// group: a rotation (degrees, counter-clockwise) and a translation.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RotationSpec {
+    pub group: String,
+    pub center: [f64; 2],
+    /// Degrees, counter-clockwise, at f = 1.
+    pub angle: f64,
+    #[serde(default)]
+    pub dx: f64,
+    #[serde(default)]
+    pub dy: f64,
+    pub function: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -120,6 +153,7 @@ pub struct ForceSpec {
     pub fx: f64,
     #[serde(default)]
     pub fy: f64,
+    pub function: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -127,6 +161,7 @@ pub struct ForceSpec {
 pub struct PressureSpec {
     pub group: String,
     pub p: f64,
+    pub function: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -137,6 +172,7 @@ pub struct TractionSpec {
     pub tx: f64,
     #[serde(default)]
     pub ty: f64,
+    pub function: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -147,6 +183,8 @@ pub struct RelationSpec {
     pub terms: Vec<TermSpec>,
     #[serde(default)]
     pub rhs: f64,
+    /// Time function scaling the right-hand side (default: f(t) = t).
+    pub function: Option<String>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -162,8 +200,12 @@ pub struct TermSpec {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct SolverSpec {
+    /// Equal load steps over (0, end_time]; a step also ends at each output time and at
+    /// each time of a function's table.
     #[serde(default = "one_usize")]
     pub steps: usize,
+    /// The end of the history (default: the last time of the function tables, or 1).
+    pub end_time: Option<f64>,
     #[serde(default = "default_tol")]
     pub tolerance: f64,
     #[serde(default = "default_iter")]
@@ -174,6 +216,7 @@ impl Default for SolverSpec {
     fn default() -> Self {
         SolverSpec {
             steps: 1,
+            end_time: None,
             tolerance: default_tol(),
             max_iterations: default_iter(),
         }
@@ -193,9 +236,15 @@ fn default_iter() -> usize {
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct OutputSpec {
-    /// Write `result.vtu`.
+    /// Write `result.vtu` (and `steps/step_NNNN.vtu` with `steps/step.pvd`).
     #[serde(default = "yes")]
     pub vtu: bool,
+    /// Per-step outputs: probes and reactions of every output time in results.json and
+    /// history.csv, and with `vtu` one VTU file per output time.
+    #[serde(default = "yes")]
+    pub history: bool,
+    /// Times of the per-step outputs; default: every step.
+    pub times: Option<Vec<f64>>,
     #[serde(default)]
     pub probe: Vec<ProbeSpec>,
     /// Hertz line-contact curve drawn on the pressure plot: half-width a and peak p0.
@@ -224,6 +273,8 @@ impl Default for OutputSpec {
     fn default() -> Self {
         OutputSpec {
             vtu: true,
+            history: true,
+            times: None,
             probe: vec![],
             hertz: None,
             curve: vec![],

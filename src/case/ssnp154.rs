@@ -43,22 +43,27 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                 nu: 0.3,
             },
         ],
+        function: vec![],
+        rotation: vec![],
         displacement: vec![
             DisplacementSpec {
                 group: "Encast".into(),
                 dx: Some(0.0),
                 dy: Some(0.0),
+                function: None,
             },
             DisplacementSpec {
                 group: "Axe".into(),
                 dx: Some(0.0),
                 dy: None,
+                function: None,
             },
         ],
         force: vec![ForceSpec {
             group: "Force".into(),
             fx: 0.0,
             fy: -17500.0,
+            function: None,
         }],
         pressure: vec![],
         traction: vec![],
@@ -78,6 +83,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                 },
             ],
             rhs: 0.0,
+            function: None,
         }],
         solver: SolverSpec {
             steps: 2,
@@ -86,6 +92,8 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         output: OutputSpec {
             // validate, study and the benches write no VTU (nor keep per-step states)
             vtu: false,
+            history: false,
+            times: None,
             hertz: Some(HertzSpec {
                 a: HERTZ_A,
                 p0: HERTZ_P0,

@@ -246,7 +246,7 @@ fn row_section(dir: &Path, row: &Row, html: &mut String) -> Result<()> {
         .map(|s| {
             format!(
                 "step to {:.3}{}",
-                s.load_factor,
+                s.time,
                 if s.converged { "" } else { " (cut)" }
             )
         })

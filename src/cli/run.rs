@@ -41,7 +41,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                     shear: &s.contact_shear,
                     multipliers: &s.contact_multipliers,
                 };
-                (s.load_factor, st)
+                (s.time, st)
             })
             .collect();
         for f in write_series(&out_dir.join("steps"), "step", &setting, &states)? {
@@ -218,16 +218,65 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
     for (name, v) in &outcome.probes {
         probes.insert(name.clone(), json!(v));
     }
-    let mut reactions = serde_json::Map::new();
-    for spec in &case.displacement {
-        let nodes = mesh.node_group(&spec.group)?;
-        let (rx, ry) = nodes.iter().fold((0.0, 0.0), |(a, b), &n| {
-            (
-                a + outcome.reactions[2 * n],
-                b + outcome.reactions[2 * n + 1],
-            )
-        });
-        reactions.insert(spec.group.clone(), json!({"rx": rx, "ry": ry}));
+    // reactions summed over the groups of the imposed displacements and motions
+    let mut support_groups: Vec<&str> =
+        case.displacement.iter().map(|d| d.group.as_str()).collect();
+    support_groups.extend(case.rotation.iter().map(|r| r.group.as_str()));
+    let mut seen = std::collections::HashSet::new();
+    support_groups.retain(|g| seen.insert(*g));
+    let mut support_nodes = vec![];
+    for g in &support_groups {
+        support_nodes.push(mesh.node_group(g)?);
+    }
+    let group_reactions = |r: &[f64]| -> Vec<[f64; 2]> {
+        support_nodes
+            .iter()
+            .map(|nodes| {
+                nodes
+                    .iter()
+                    .fold([0.0, 0.0], |a, &n| [a[0] + r[2 * n], a[1] + r[2 * n + 1]])
+            })
+            .collect()
+    };
+    let reactions_json = |r: &[f64]| -> serde_json::Map<String, serde_json::Value> {
+        let mut out = serde_json::Map::new();
+        for (g, v) in support_groups.iter().zip(group_reactions(r)) {
+            out.insert(g.to_string(), json!({"rx": v[0], "ry": v[1]}));
+        }
+        out
+    };
+    let reactions = reactions_json(&outcome.reactions);
+    // per output time: probes and reactions (results.json and history.csv)
+    let mut history = vec![];
+    if case.output.history && !outcome.steps.is_empty() {
+        let mut text = String::from("time");
+        for p in &case.output.probe {
+            text.push_str(&format!(",{}", p.name));
+        }
+        for g in &support_groups {
+            text.push_str(&format!(",rx_{g},ry_{g}"));
+        }
+        text.push('\n');
+        for st in &outcome.steps {
+            let mut probes = serde_json::Map::new();
+            text.push_str(&st.time.to_string());
+            for (name, v) in &st.probes {
+                probes.insert(name.clone(), json!(v));
+                text.push_str(&format!(",{v}"));
+            }
+            for v in group_reactions(&st.reactions) {
+                text.push_str(&format!(",{},{}", v[0], v[1]));
+            }
+            text.push('\n');
+            history.push(json!({
+                "time": st.time,
+                "probes": probes,
+                "reactions": reactions_json(&st.reactions),
+            }));
+        }
+        let f = out_dir.join("history.csv");
+        write_atomic(&f, text.as_bytes())?;
+        files.push(f.display().to_string());
     }
     let results = json!({
         "case": path.display().to_string(),
@@ -236,6 +285,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         "modelisation": case.model.modelisation.name(),
         "probes": probes,
         "reactions": reactions,
+        "history": history,
         "contact": contact_json,
         "solver": outcome.report,
         "files": files,

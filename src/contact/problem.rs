@@ -118,7 +118,7 @@ impl Nonlinear for ContactProblem<'_> {
     fn update_status(&mut self, x: &[f64], lambda: f64) -> Result<usize> {
         let nf = self.solid.num_free();
         let mut u = vec![0.0; self.solid.u.len()];
-        self.solid.asm.dofs.expand(&x[..nf], lambda, &mut u);
+        self.solid.displacement(&x[..nf], lambda, &mut u);
         let lam = &x[nf..];
         let mesh = self.solid.mesh;
         let mut changes = 0;

@@ -3,12 +3,14 @@
 //! | file | what |
 //! |---|---|
 //! | `gmres.rs` | right-preconditioned GMRES (non-symmetric tangents on the LDLᵀ of their symmetric part) |
+//! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
 //! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
 //! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
 
 pub mod gmres;
+pub mod history;
 pub mod ldlt;
 pub mod linear;
 pub mod newton;

@@ -1,4 +1,5 @@
-//! Newton's method with load steps: λ goes from 0 to 1 in equal steps; each step iterates
+//! Newton's method with load steps: the time t goes from 0 to the end through the step ends
+//! (by default `steps` equal steps to t = 1, t being the load factor); each step iterates
 //! until the relative residual is below the tolerance; a step that fails is cut in half and
 //! retried (up to `max_cuts` times). A step after the first starts from a linear
 //! extrapolation of the previous one when that lowers the starting residual. Every
@@ -50,7 +51,10 @@ pub trait Nonlinear {
 
 #[derive(Clone, Debug)]
 pub struct NewtonSettings {
+    /// Number of equal steps to t = 1 when `times` is empty.
     pub steps: usize,
+    /// The ends of the load steps (increasing, positive); the last one is the end time.
+    pub times: Vec<f64>,
     pub tolerance: f64,
     pub max_iterations: usize,
     pub max_cuts: usize,
@@ -63,6 +67,7 @@ impl Default for NewtonSettings {
     fn default() -> Self {
         NewtonSettings {
             steps: 1,
+            times: vec![],
             tolerance: 1e-6,
             max_iterations: 25,
             max_cuts: 8,
@@ -83,7 +88,8 @@ pub struct Iteration {
 
 #[derive(Clone, Debug, Serialize)]
 pub struct StepReport {
-    pub load_factor: f64,
+    /// The time reached (the load factor without a load history).
+    pub time: f64,
     pub converged: bool,
     pub iterations: Vec<Iteration>,
 }
@@ -98,12 +104,23 @@ pub struct NewtonReport {
     pub time_evaluate_s: f64,
     pub time_factor_s: f64,
     pub time_solve_s: f64,
-    /// (load factor, unknowns) after each converged step, with `keep_states`.
+    /// (time, unknowns) after each converged step, with `keep_states`.
     #[serde(skip)]
     pub states: Vec<(f64, Vec<f64>)>,
 }
 
-/// Solves the problem from its current state to λ = 1.
+impl NewtonSettings {
+    /// The step ends: `times`, or `steps` equal steps to 1.
+    pub fn step_ends(&self) -> Vec<f64> {
+        if self.times.is_empty() {
+            super::history::step_ends(1.0, self.steps, &[])
+        } else {
+            self.times.clone()
+        }
+    }
+}
+
+/// Solves the problem from its current state through the step ends.
 pub fn solve(
     problem: &mut dyn Nonlinear,
     settings: &NewtonSettings,
@@ -115,15 +132,23 @@ pub fn solve(
     let mut lin = LinearSolver::new(method);
     lin.n_primal = problem.num_primal();
     let mut report = NewtonReport::default();
+    let ends = settings.step_ends();
+    let t_end = *ends.last().unwrap_or(&1.0);
     let mut lambda_done = 0.0;
-    let base = 1.0 / settings.steps.max(1) as f64;
-    let mut dl = base;
+    // the next step end, and how many times the current step has been halved
+    let mut next = 0;
+    let mut level = 0u32;
     let mut cuts = 0;
     let backtracking = problem.backtracking();
     // the last converged step: (its load-factor increment, its change of the unknowns)
     let mut last_step: Option<(f64, Vec<f64>)> = None;
-    while lambda_done < 1.0 - 1e-12 {
-        let lambda = (lambda_done + dl).min(1.0);
+    while next < ends.len() {
+        let start = if next == 0 { 0.0 } else { ends[next - 1] };
+        let dl = (ends[next] - start) / 2f64.powi(level as i32);
+        let mut lambda = lambda_done + dl;
+        if lambda >= ends[next] - 1e-12 * t_end.abs().max(1.0) {
+            lambda = ends[next];
+        }
         let x_start = x.clone();
         // Predictor: each step after the first may start from the previous step's increment,
         // scaled to this step, when that lowers the starting residual (SSNP154 D: 20 -> 15
@@ -141,7 +166,7 @@ pub fn solve(
             }
         }
         let mut step = StepReport {
-            load_factor: lambda,
+            time: lambda,
             converged: false,
             iterations: vec![],
         };
@@ -184,7 +209,7 @@ pub fn solve(
                 status_changes: 0,
             });
             if settings.verbose {
-                eprintln!("  step λ={lambda:.4} iter {it:2}  residual {rel:.3e}");
+                eprintln!("  step t={lambda:.4} iter {it:2}  residual {rel:.3e}");
             }
             if !rel.is_finite() {
                 failure = Some("non-finite residual".to_string());
@@ -268,25 +293,28 @@ pub fn solve(
             }
             problem.commit_step();
             lambda_done = lambda;
-            dl = (2.0 * dl).min(base); // grow back after a cut
+            if lambda == ends[next] {
+                next += 1;
+            }
+            level = level.saturating_sub(1); // grow back after a cut
             continue;
         }
         let why = failure.unwrap_or_default();
         if cuts >= settings.max_cuts {
             return Err(Error::solve(format!(
-                "Newton failed at load factor {lambda:.4} after {cuts} step cuts: {why}"
+                "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}"
             )));
         }
         if settings.verbose {
-            eprintln!("  step to λ={lambda:.4} failed ({why}); cutting the step");
+            eprintln!("  step to t={lambda:.4} failed ({why}); cutting the step");
         }
         cuts += 1;
-        dl *= 0.5;
+        level += 1;
         x = x_start;
         problem.restore_step();
     }
     // leave the problem at the converged state
-    problem.evaluate(&x, 1.0, &mut r, false)?;
+    problem.evaluate(&x, t_end, &mut r, false)?;
     report.symbolic_factorizations = lin.symbolic_count;
     Ok(report)
 }

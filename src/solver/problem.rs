@@ -1,31 +1,38 @@
-//! `SolidProblem`: the discrete equilibrium of elastic bodies, R(x, λ) = Tᵀ(f_int(u) − λ f_ext)
-//! with u = T x + λ g, plus reactions at the imposed dofs.
+//! `SolidProblem`: the discrete equilibrium of elastic bodies at time t,
+//! R(x, t) = Tᵀ(f_int(u) − f_ext(t)) with u = T x + G g(t), plus reactions at the imposed
+//! dofs. Without a load history t is the load factor (everything proportional to t).
 
 use crate::assembly::dofs::Role;
 use crate::assembly::matrix::SparseMatrix;
 use crate::assembly::Assembler;
 use crate::error::Result;
 use crate::mesh::Mesh;
+use crate::solver::history::Loading;
 use crate::solver::newton::Nonlinear;
 
 pub struct SolidProblem<'m> {
     pub mesh: &'m Mesh,
     pub asm: Assembler,
-    /// External loads at load factor 1 (full dofs).
+    /// The forces and imposed displacements as functions of time.
+    pub loading: Loading,
+    /// External loads at the current time (full dofs).
     pub fext: Vec<f64>,
+    /// Imposed values at the current time (see `DofMap::expand`).
+    imposed: Vec<f64>,
     /// Current full displacement and internal forces.
     pub u: Vec<f64>,
     pub fint: Vec<f64>,
-    /// f_int + other internal contributions (contact) − λ f_ext, full dofs, last evaluation.
+    /// f_int + other internal contributions (contact) − f_ext, full dofs, last evaluation.
     pub residual_full: Vec<f64>,
-    pub lambda: f64,
+    /// The time of the current state (NaN before the first evaluation).
+    pub time: f64,
 }
 
 /// Max-norms used by the convergence test (as the reference code: displacement rows only).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Norms {
     pub residual: f64,
-    /// max |λ f_ext| and |reaction| over all dofs: the scale of the residual.
+    /// max |f_ext| and |reaction| over all dofs: the scale of the residual.
     pub reference: f64,
     /// Residual of the constraint (multiplier) rows, already relative (0 when unmeasured).
     pub constraint: f64,
@@ -44,46 +51,65 @@ impl Norms {
 }
 
 impl<'m> SolidProblem<'m> {
+    /// Loads `fext` and the imposed values of the dof map, all proportional to t.
     pub fn new(mesh: &'m Mesh, asm: Assembler, fext: Vec<f64>) -> Self {
-        let n = fext.len();
+        let loading = Loading::proportional(fext, &asm.dofs);
+        Self::with_loading(mesh, asm, loading)
+    }
+
+    pub fn with_loading(mesh: &'m Mesh, asm: Assembler, loading: Loading) -> Self {
+        let n = asm.dofs.num_dofs();
         SolidProblem {
             mesh,
             asm,
-            fext,
+            loading,
+            fext: vec![0.0; n],
+            imposed: vec![],
             u: vec![0.0; n],
             fint: vec![0.0; n],
             residual_full: vec![0.0; n],
-            lambda: 0.0,
+            time: f64::NAN,
         }
+    }
+
+    /// Moves the loads to time t.
+    fn set_time(&mut self, t: f64) {
+        if t != self.time {
+            self.loading.forces_at(t, &mut self.fext);
+            self.loading
+                .imposed_at(t, &self.asm.dofs, &mut self.imposed);
+            self.time = t;
+        }
+    }
+
+    /// The full displacement of the free unknowns `x` at time t.
+    pub fn displacement(&mut self, x: &[f64], t: f64, u: &mut [f64]) {
+        self.set_time(t);
+        self.asm.dofs.expand(x, &self.imposed, u);
     }
 
     pub fn num_free(&self) -> usize {
         self.asm.dofs.num_free
     }
 
-    /// Sets the free unknowns `x` and the load factor, assembles internal forces (and the
-    /// tangent if asked).
-    pub fn set_state(&mut self, x: &[f64], lambda: f64, with_tangent: bool) -> Result<()> {
-        self.lambda = lambda;
-        self.asm.dofs.expand(x, lambda, &mut self.u);
+    /// Sets the free unknowns `x` and the time, assembles internal forces (and the tangent
+    /// if asked).
+    pub fn set_state(&mut self, x: &[f64], t: f64, with_tangent: bool) -> Result<()> {
+        self.set_time(t);
+        self.asm.dofs.expand(x, &self.imposed, &mut self.u);
         self.asm
             .assemble(self.mesh, &self.u, &mut self.fint, with_tangent)
     }
 
-    /// Residual f_int + extra − λ f_ext reduced to the free unknowns, with its norms.
+    /// Residual f_int + extra − f_ext reduced to the free unknowns, with its norms.
     /// `extra` holds further internal forces on the full dofs (e.g. contact).
     pub fn finish_residual(&mut self, extra: Option<&[f64]>, r: &mut [f64]) -> Norms {
-        let lambda = self.lambda;
         for d in 0..self.u.len() {
-            self.residual_full[d] =
-                self.fint[d] - lambda * self.fext[d] + extra.map_or(0.0, |e| e[d]);
+            self.residual_full[d] = self.fint[d] - self.fext[d] + extra.map_or(0.0, |e| e[d]);
         }
         self.asm.dofs.reduce(&self.residual_full, r);
         let residual = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut reference = self
-            .fext
-            .iter()
-            .fold(0.0f64, |m, v| m.max((lambda * v).abs()));
+        let mut reference = self.fext.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         for (d, role) in self.asm.dofs.roles.iter().enumerate() {
             if !matches!(role, Role::Free(_)) {
                 reference = reference.max(self.residual_full[d].abs());

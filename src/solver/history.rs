@@ -1,0 +1,291 @@
+//! Load histories: time functions (piecewise-linear tables) that scale each load and each
+//! imposed displacement, rigid motions (rotation and translation of a node set), and the
+//! evaluation of the external forces and imposed values at a time t.
+//!
+//! Without a history every load follows the ramp f(t) = t, so that t plays the part of the
+//! classic load factor (t = 1: the full load).
+
+use crate::assembly::dofs::DofMap;
+use crate::error::{Error, Result};
+
+/// A scalar function of time.
+#[derive(Clone, Debug, PartialEq)]
+pub enum TimeFunction {
+    /// f(t) = t.
+    Ramp,
+    /// Linear between the (time, value) points, constant before the first and after the last.
+    Table(Vec<(f64, f64)>),
+}
+
+impl TimeFunction {
+    /// A table; its times must increase strictly. `what` names it in errors.
+    pub fn table(points: Vec<(f64, f64)>, what: &str) -> Result<TimeFunction> {
+        if points.is_empty() {
+            return Err(Error::model(format!("{what}: the table has no points")));
+        }
+        if let Some((t, v)) = points
+            .iter()
+            .find(|(t, v)| !t.is_finite() || !v.is_finite())
+        {
+            return Err(Error::model(format!(
+                "{what}: point ({t}, {v}) is not finite"
+            )));
+        }
+        if let Some(w) = points.windows(2).find(|w| w[1].0 <= w[0].0) {
+            return Err(Error::model(format!(
+                "{what}: times must increase strictly, but {} follows {}",
+                w[1].0, w[0].0
+            )));
+        }
+        Ok(TimeFunction::Table(points))
+    }
+
+    pub fn value(&self, t: f64) -> f64 {
+        let pts = match self {
+            TimeFunction::Ramp => return t,
+            TimeFunction::Table(p) => p,
+        };
+        let (first, last) = (pts[0], pts[pts.len() - 1]);
+        if t <= first.0 {
+            return first.1;
+        }
+        if t >= last.0 {
+            return last.1;
+        }
+        let k = pts.partition_point(|p| p.0 <= t); // pts[k-1].0 <= t < pts[k].0
+        let ((t0, v0), (t1, v1)) = (pts[k - 1], pts[k]);
+        v0 + (v1 - v0) * (t - t0) / (t1 - t0)
+    }
+
+    /// The times where the slope changes (a load step should end there).
+    pub fn breakpoints(&self) -> Vec<f64> {
+        match self {
+            TimeFunction::Ramp => vec![],
+            TimeFunction::Table(p) => p.iter().map(|q| q.0).collect(),
+        }
+    }
+}
+
+/// Displacements imposed on dofs, as functions of time.
+#[derive(Clone, Debug)]
+pub enum Imposed {
+    /// u_d = value · f(t) for each (dof, value).
+    Scaled {
+        dofs: Vec<(usize, f64)>,
+        function: TimeFunction,
+    },
+    /// A rigid motion of nodes: rotation by angle · f(t) (radians, counter-clockwise) about
+    /// `center`, then translation by `translation` · f(t). Each entry is (node, position).
+    Rigid {
+        nodes: Vec<(usize, [f64; 2])>,
+        center: [f64; 2],
+        angle: f64,
+        translation: [f64; 2],
+        function: TimeFunction,
+    },
+}
+
+/// All time-dependent data of a problem.
+#[derive(Clone, Debug)]
+pub struct Loading {
+    /// External force vectors (full dofs) at f = 1 with their time functions.
+    pub forces: Vec<(Vec<f64>, TimeFunction)>,
+    /// Imposed displacements; a dof in several entries takes the last one's value. Imposed
+    /// dofs in no entry stay at 0.
+    pub imposed: Vec<Imposed>,
+    /// Time function of each relation's right-hand side (Ramp when missing).
+    pub relation_functions: Vec<TimeFunction>,
+}
+
+impl Loading {
+    /// Everything proportional to t: the forces `fext` and the DofMap's imposed values and
+    /// relation right-hand sides at t = 1.
+    pub fn proportional(fext: Vec<f64>, dofs: &DofMap) -> Loading {
+        let imposed = dofs
+            .prescribed
+            .iter()
+            .enumerate()
+            .filter(|(_, v)| **v != 0.0)
+            .map(|(d, &v)| (d, v))
+            .collect();
+        Loading {
+            forces: vec![(fext, TimeFunction::Ramp)],
+            imposed: vec![Imposed::Scaled {
+                dofs: imposed,
+                function: TimeFunction::Ramp,
+            }],
+            relation_functions: vec![],
+        }
+    }
+
+    /// External forces at time t (full dofs).
+    pub fn forces_at(&self, t: f64, out: &mut [f64]) {
+        out.fill(0.0);
+        for (f, func) in &self.forces {
+            let s = func.value(t);
+            if s != 0.0 {
+                for (o, v) in out.iter_mut().zip(f) {
+                    *o += s * v;
+                }
+            }
+        }
+    }
+
+    /// The imposed values at time t as `DofMap::expand` takes them: one per dof (imposed
+    /// dofs), then one per relation (its right-hand side).
+    pub fn imposed_at(&self, t: f64, dofs: &DofMap, out: &mut Vec<f64>) {
+        out.clear();
+        out.resize(dofs.num_dofs() + dofs.rhs.len(), 0.0);
+        for entry in &self.imposed {
+            match entry {
+                Imposed::Scaled { dofs, function } => {
+                    let s = function.value(t);
+                    for &(d, v) in dofs {
+                        out[d] = s * v;
+                    }
+                }
+                Imposed::Rigid {
+                    nodes,
+                    center,
+                    angle,
+                    translation,
+                    function,
+                } => {
+                    let s = function.value(t);
+                    let (sin, cos) = (s * angle).sin_cos();
+                    for &(n, x) in nodes {
+                        let (rx, ry) = (x[0] - center[0], x[1] - center[1]);
+                        let moved = [
+                            center[0] + cos * rx - sin * ry + s * translation[0],
+                            center[1] + sin * rx + cos * ry + s * translation[1],
+                        ];
+                        out[2 * n] = moved[0] - x[0];
+                        out[2 * n + 1] = moved[1] - x[1];
+                    }
+                }
+            }
+        }
+        let base = dofs.num_dofs();
+        for (r, &rhs) in dofs.rhs.iter().enumerate() {
+            let f = self
+                .relation_functions
+                .get(r)
+                .unwrap_or(&TimeFunction::Ramp);
+            out[base + r] = rhs * f.value(t);
+        }
+    }
+
+    /// Times in (0, end) where some time function has a kink.
+    pub fn breakpoints(&self, end: f64) -> Vec<f64> {
+        let mut out: Vec<f64> = self
+            .forces
+            .iter()
+            .map(|f| &f.1)
+            .chain(self.imposed.iter().map(|i| match i {
+                Imposed::Scaled { function, .. } | Imposed::Rigid { function, .. } => function,
+            }))
+            .chain(&self.relation_functions)
+            .flat_map(|f| f.breakpoints())
+            .filter(|&t| t > 0.0 && t < end)
+            .collect();
+        out.sort_by(f64::total_cmp);
+        out.dedup();
+        out
+    }
+}
+
+/// The ends of the load steps: `steps` equal steps over (0, end], plus every time in
+/// `extra` (output times, kinks of the time functions) inside (0, end). Times closer than
+/// 1e-9 · end merge.
+pub fn step_ends(end: f64, steps: usize, extra: &[f64]) -> Vec<f64> {
+    let steps = steps.max(1);
+    let mut t: Vec<f64> = (1..=steps).map(|k| end * k as f64 / steps as f64).collect();
+    t.extend(extra.iter().copied().filter(|&x| x > 0.0 && x < end));
+    t.sort_by(f64::total_cmp);
+    let eps = 1e-9 * end.abs();
+    let mut out: Vec<f64> = vec![];
+    for x in t {
+        match out.last_mut() {
+            Some(l) if (x - *l).abs() <= eps => *l = l.max(x),
+            _ => out.push(x),
+        }
+    }
+    if let Some(l) = out.last_mut() {
+        *l = end;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn table_interpolates_linearly_and_holds_its_end_values() {
+        let f = TimeFunction::table(vec![(0.0, 0.0), (1.0, 2.0), (3.0, -2.0)], "f").unwrap();
+        for (t, v) in [
+            (-1.0, 0.0),
+            (0.0, 0.0),
+            (0.25, 0.5),
+            (1.0, 2.0),
+            (2.0, 0.0),
+            (2.5, -1.0),
+            (3.0, -2.0),
+            (9.0, -2.0),
+        ] {
+            assert!(
+                (f.value(t) - v).abs() < 1e-15,
+                "f({t}) = {} not {v}",
+                f.value(t)
+            );
+        }
+        assert_eq!(TimeFunction::Ramp.value(1.7), 1.7);
+    }
+
+    #[test]
+    fn non_increasing_times_are_an_error() {
+        let e = TimeFunction::table(vec![(0.0, 0.0), (1.0, 1.0), (1.0, 2.0)], "function 'f'")
+            .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "function 'f': times must increase strictly, but 1 follows 1"
+        );
+        assert!(TimeFunction::table(vec![], "g").is_err());
+        assert!(TimeFunction::table(vec![(0.0, f64::NAN)], "g").is_err());
+    }
+
+    #[test]
+    fn step_ends_merge_the_grid_and_the_extra_times() {
+        let t = step_ends(2.0, 4, &[0.5, 0.75, 1.0 + 1e-12, 3.0, 0.0]);
+        assert_eq!(t, vec![0.5, 0.75, 1.0 + 1e-12, 1.5, 2.0]);
+        assert_eq!(step_ends(1.0, 1, &[]), vec![1.0]);
+    }
+
+    #[test]
+    fn rigid_motion_rotates_about_the_center() {
+        let used = [true; 4];
+        let dofs = DofMap::new(&used, &[(0, 0.0), (1, 0.0), (2, 0.0), (3, 0.0)], &[]).unwrap();
+        let loading = Loading {
+            forces: vec![],
+            imposed: vec![Imposed::Rigid {
+                nodes: vec![(0, [2.0, 1.0]), (1, [1.0, 1.0])],
+                center: [1.0, 1.0],
+                angle: std::f64::consts::FRAC_PI_2,
+                translation: [0.5, 0.0],
+                function: TimeFunction::table(vec![(0.0, 0.0), (2.0, 1.0)], "f").unwrap(),
+            }],
+            relation_functions: vec![],
+        };
+        let mut g = vec![];
+        loading.imposed_at(2.0, &dofs, &mut g);
+        // (2, 1) turns a quarter about (1, 1) to (1, 2), then moves by (0.5, 0)
+        let want = [-0.5, 1.0, 0.5, 0.0];
+        for (a, b) in g.iter().zip(want) {
+            assert!((a - b).abs() < 1e-15, "{g:?}");
+        }
+        loading.imposed_at(1.0, &dofs, &mut g);
+        let (s, c) = (std::f64::consts::FRAC_PI_4).sin_cos();
+        assert!((g[0] - (1.0 + c - 2.0 + 0.25)).abs() < 1e-15);
+        assert!((g[1] - (1.0 + s - 1.0)).abs() < 1e-15);
+    }
+}
