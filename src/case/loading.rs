@@ -122,7 +122,9 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
             }
         }
     };
-    let mut pending: Vec<(usize, Box<dyn Fn(&mut [f64]) -> Result<()> + '_>)> = vec![];
+    // (force slot, what adds the load to it): run after every function is looked up
+    type AddLoad<'a> = Box<dyn Fn(&mut [f64]) -> Result<()> + 'a>;
+    let mut pending: Vec<(usize, AddLoad)> = vec![];
     for spec in &case.force {
         let what = format!("[[force]] on '{}'", spec.group);
         let i = slot(lookup(&funcs, &spec.function, &what)?);

@@ -524,6 +524,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     case.model.kinematics == Kinematics::Small,
                 );
                 mortar.initial_gap = c.initial_gap;
+                // a micro-strain of the softest body: below it a pressure is round-off
+                mortar.pressure_floor = 1e-6 * e_min;
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
                     let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;

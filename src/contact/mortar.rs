@@ -21,7 +21,7 @@
 //! (t_j = 0), stick (s̃_j = 0) or slip (t_j = μ λ_j sign(t_j + c s̃_j / D_j)).
 
 use super::pair::ContactPair;
-use super::point_segment::initial_candidates;
+use super::point_segment::{candidates_at, initial_candidates};
 use super::projection::point_and_tangent;
 use super::surface::Surface;
 use crate::assembly::coupled::Triplets;
@@ -41,8 +41,11 @@ pub struct Mortar {
     /// slave cells around each slave node (for the averaged normals)
     cells_of_node: HashMap<usize, Vec<usize>>,
     candidates: Vec<Vec<usize>>,
+    /// The candidates at the start of the load step (restored when it is cut).
+    saved_candidates: Vec<Vec<usize>>,
     /// for each full dof read by some slave cell's evaluation, those cells
     readers: HashMap<usize, Vec<usize>>,
+    saved_readers: HashMap<usize, Vec<usize>>,
     active: Vec<bool>,
     saved: Vec<bool>,
     axisymmetric: bool,
@@ -55,6 +58,9 @@ pub struct Mortar {
     /// nodes excluded from friction.
     pub friction: Option<f64>,
     pub friction_excluded: Vec<usize>,
+    /// The smallest pressure scale of the constraint residual (when every multiplier is
+    /// about zero, e.g. a contact that has opened, the rows are measured against this).
+    pub pressure_floor: f64,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
     /// Friction branch per node at the last status update, and at the start of the step: a
@@ -62,6 +68,12 @@ pub struct Mortar {
     /// while the friction rows follow another branch.
     law: Vec<Branch>,
     saved_law: Vec<Branch>,
+    /// Per slave node, the factor on c in the friction trial and how often its branch
+    /// changed in the current step: a node that keeps switching gets a smaller factor
+    /// (semi-smooth Newton cycles when c is large for the local tangential stiffness; the
+    /// solution does not depend on c).
+    trial_scale: Vec<f64>,
+    switches: Vec<u32>,
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
     last_d: std::cell::RefCell<Vec<f64>>,
     /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
@@ -131,8 +143,10 @@ impl Mortar {
             mult_nodes,
             mult_of,
             cells_of_node,
+            saved_candidates: candidates.clone(),
             candidates,
             readers: HashMap::new(),
+            saved_readers: HashMap::new(),
             active: vec![],
             saved: vec![],
             axisymmetric: model == Modelisation::Axisymmetric,
@@ -141,15 +155,19 @@ impl Mortar {
             initial_gap: None,
             friction: None,
             friction_excluded: vec![],
+            pressure_floor: 0.0,
             u_start: vec![0.0; 2 * mesh.num_nodes()],
             law: vec![],
             saved_law: vec![],
+            trial_scale: vec![],
+            switches: vec![],
             last_d: Default::default(),
             cell_mults,
         };
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
         m.build_readers(mesh);
+        m.saved_readers = m.readers.clone();
         m
     }
 
@@ -483,7 +501,8 @@ impl Mortar {
         if !self.active[j] || self.friction_excluded.contains(&j) || pressure <= 1e-8 * lmax {
             return Branch::Free;
         }
-        let trial = lam[nm + j] + self.c * slip / d;
+        let cf = self.trial_scale.get(j).copied().unwrap_or(1.0);
+        let trial = lam[nm + j] + cf * self.c * slip / d;
         if trial.abs() <= mu * pressure {
             Branch::Stick
         } else {
@@ -772,8 +791,16 @@ impl ContactPair for Mortar {
     }
 
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
-        let (g, d, facing, sl) = self.gaps(mesh, u);
+        // Re-pair on the current geometry (large sliding): the master cells near each slave
+        // cell now; a new set changes the residual, so it counts as a status change.
+        let near = candidates_at(mesh, Some(u), &self.slave, &self.master);
         let mut changes = 0;
+        if near != self.candidates {
+            changes += 1;
+            self.candidates = near;
+            self.build_readers(mesh);
+        }
+        let (g, d, facing, sl) = self.gaps(mesh, u);
         for j in 0..self.active.len() {
             let active = facing[j] && lam[j] - self.c * g[j] / d[j] > 0.0;
             if active != self.active[j] {
@@ -785,10 +812,17 @@ impl ContactPair for Mortar {
             // the branch `contribute` takes at this iterate
             let nm = self.mult_nodes.len();
             self.law.resize(nm, Branch::Free);
+            self.trial_scale.resize(nm, 1.0);
+            self.switches.resize(nm, 0);
             let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for j in 0..nm {
                 let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 if law != self.law[j] {
+                    self.switches[j] += 1;
+                    if self.switches[j] >= 3 {
+                        self.trial_scale[j] = (0.1 * self.trial_scale[j]).max(1e-4);
+                        self.switches[j] = 0;
+                    }
                     changes += 1;
                     self.law[j] = law;
                 }
@@ -798,12 +832,21 @@ impl ContactPair for Mortar {
     }
 
     fn commit(&mut self, u: &[f64]) {
+        self.switches.fill(0);
+        if self.saved_candidates != self.candidates {
+            self.saved_candidates = self.candidates.clone();
+            self.saved_readers = self.readers.clone();
+        }
         self.saved = self.active.clone();
         self.saved_law = self.law.clone();
         self.u_start.copy_from_slice(u);
     }
 
     fn restore(&mut self) {
+        if self.candidates != self.saved_candidates {
+            self.candidates = self.saved_candidates.clone();
+            self.readers = self.saved_readers.clone();
+        }
         self.active = self.saved.clone();
         self.law = self.saved_law.clone();
     }
@@ -816,7 +859,9 @@ impl ContactPair for Mortar {
         if d.len() != nm {
             return 0.0;
         }
-        let scale = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let scale = lam[..nm]
+            .iter()
+            .fold(self.pressure_floor, |m, v| m.max(v.abs()));
         let worst = rl
             .iter()
             .enumerate()

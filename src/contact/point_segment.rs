@@ -950,13 +950,24 @@ impl PointToSegment {
 /// Master cells within reach of each slave cell on the initial geometry: those whose
 /// bounding box, grown by the larger of the two cells' sizes, meets the slave cell's.
 pub fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec<usize>> {
+    candidates_at(mesh, None, slave, master)
+}
+
+/// The same on the geometry displaced by `u` (full dofs), when given.
+pub fn candidates_at(
+    mesh: &Mesh,
+    u: Option<&[f64]>,
+    slave: &Surface,
+    master: &Surface,
+) -> Vec<Vec<usize>> {
     let bbox = |c: usize| {
         let mut lo = [f64::MAX; 2];
         let mut hi = [f64::MIN; 2];
         for &n in mesh.cell_nodes(c) {
             for d in 0..2 {
-                lo[d] = lo[d].min(mesh.coords[n][d]);
-                hi[d] = hi[d].max(mesh.coords[n][d]);
+                let x = mesh.coords[n][d] + u.map_or(0.0, |u| u[2 * n + d]);
+                lo[d] = lo[d].min(x);
+                hi[d] = hi[d].max(x);
             }
         }
         (lo, hi)

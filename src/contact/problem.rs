@@ -129,6 +129,10 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn imposed_change(&self, t0: f64, t1: f64) -> bool {
+        self.solid.imposed_change(t0, t1)
+    }
+
     fn backtracking(&self) -> bool {
         self.pairs.iter().any(|p| p.friction() > 0.0)
     }

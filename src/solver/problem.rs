@@ -82,6 +82,14 @@ impl<'m> SolidProblem<'m> {
         }
     }
 
+    /// Whether any imposed value differs between times t0 and t1.
+    pub fn imposed_change(&self, t0: f64, t1: f64) -> bool {
+        let (mut a, mut b) = (vec![], vec![]);
+        self.loading.imposed_at(t0, &self.asm.dofs, &mut a);
+        self.loading.imposed_at(t1, &self.asm.dofs, &mut b);
+        a != b
+    }
+
     /// The full displacement of the free unknowns `x` at time t.
     pub fn displacement(&mut self, x: &[f64], t: f64, u: &mut [f64]) {
         self.set_time(t);
@@ -170,5 +178,8 @@ impl Nonlinear for SolidProblem<'_> {
     }
     fn length_scale(&self) -> f64 {
         self.length_scale()
+    }
+    fn imposed_change(&self, t0: f64, t1: f64) -> bool {
+        self.imposed_change(t0, t1)
     }
 }
