@@ -221,3 +221,56 @@ fn probe_at_a_point_takes_the_nearest_node_and_curves_check_their_group() {
         "[[output.curve]] 'c': curve: group 'Body' holds no edge (Seg2/Seg3) cells"
     );
 }
+
+#[test]
+fn bad_load_histories_name_the_entry() {
+    let with = |extra: &str| format!("{GOOD}{extra}");
+    let e = error_of(
+        "fn_times.toml",
+        &with("[[function]]\nname = \"ramp\"\ntable = [[0, 0], [1, 1], [0.5, 2]]\n"),
+    );
+    assert_eq!(
+        e,
+        "[[function]] 'ramp': times must increase strictly, but 0.5 follows 1"
+    );
+    let e = error_of(
+        "fn_unknown.toml",
+        &with("[[function]]\nname = \"ramp\"\ntable = [[0, 0], [1, 1]]\n")
+            .replace("fy = -1.0", "fy = -1.0\nfunction = \"rampe\""),
+    );
+    assert_eq!(
+        e,
+        "[[force]] on 'TopRight': function 'rampe' is not defined (functions: ramp)"
+    );
+    let e = error_of(
+        "fn_twice.toml",
+        &with("[[function]]\nname = \"f\"\ntable = [[0, 0], [1, 1]]\n[[function]]\nname = \"f\"\ntable = [[0, 0], [2, 1]]\n"),
+    );
+    assert_eq!(e, "[[function]] 'f' is defined twice");
+    let e = error_of(
+        "out_time.toml",
+        &with(
+            "[[function]]\nname = \"f\"\ntable = [[0, 0], [2, 1]]\n[output]\ntimes = [1.0, 2.5]\n",
+        ),
+    );
+    assert!(
+        e.starts_with("[output] times: 2.5 is outside the history (0, 2]"),
+        "{e}"
+    );
+    let e = error_of("out_order.toml", &with("[output]\ntimes = [0.5, 0.25]\n"));
+    assert_eq!(
+        e,
+        "[output] times must increase strictly, but 0.25 follows 0.5"
+    );
+    let e = error_of("end.toml", &with("[solver]\nend_time = -1.0\n"));
+    assert_eq!(e, "[solver] end_time must be positive, got -1");
+    let e = error_of(
+        "rot_overlap.toml",
+        &with("[[rotation]]\ngroup = \"Left\"\ncenter = [0.0, 0.0]\nangle = 10.0\n"),
+    );
+    assert!(
+        e.starts_with("[[rotation]] on 'Left': node ")
+            && e.ends_with("also has a [[displacement]]; a node's motion is imposed once"),
+        "{e}"
+    );
+}

@@ -21,7 +21,7 @@ use crate::error::{Error, Result};
 use crate::fem::material::{Elastic, Modelisation};
 use crate::fem::solid::{Kinematics, SolidModel};
 use crate::mesh::{generate, CellKind, Mesh};
-use crate::post::stress::{cell_node_stresses, nodal_stresses};
+use crate::post::stress::{cell_node_stresses, nodal_stresses, CellNodeStresses};
 use crate::solver::linear::Method;
 use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
 use crate::solver::problem::SolidProblem;
@@ -263,7 +263,7 @@ fn step_outcome(
     let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
     let mut probes = vec![];
     for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(solid, p, &stress)?));
+        probes.push((p.name.clone(), probe(solid, p, &elno, &stress)?));
     }
     Ok(StepOutcome {
         time,
@@ -347,7 +347,13 @@ fn probe_nodes(mesh: &Mesh, spec: &schema::ProbeSpec) -> Result<Vec<usize>> {
 }
 
 /// Value of a probe: mean of the field over the nodes of its group (or at its node).
-pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]]) -> Result<f64> {
+/// `elno` are the cell-node stresses of the state, `all` their average over every cell.
+pub fn probe(
+    problem: &SolidProblem,
+    spec: &schema::ProbeSpec,
+    elno: &CellNodeStresses,
+    all: &[[f64; 4]],
+) -> Result<f64> {
     let mesh = problem.mesh;
     let what = format!("probe '{}'", spec.name);
     let nodes = probe_nodes(mesh, spec)?;
@@ -361,8 +367,7 @@ pub fn probe(problem: &SolidProblem, spec: &schema::ProbeSpec, all: &[[f64; 4]])
             let local;
             let s = match &spec.stress_group {
                 Some(g) => {
-                    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
-                    local = nodal_stresses(mesh, &problem.asm, &elno, Some(g))
+                    local = nodal_stresses(mesh, &problem.asm, elno, Some(g))
                         .map_err(|e| Error::model(format!("{what}: {e}")))?;
                     &local
                 }
@@ -673,7 +678,7 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
     let mut probes = vec![];
     for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(&problem, p, &stress)?));
+        probes.push((p.name.clone(), probe(&problem, p, &elno, &stress)?));
     }
     Ok(Outcome {
         report,

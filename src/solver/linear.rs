@@ -41,6 +41,26 @@ pub struct LinearSolver {
     /// SaddleLdlt: the symmetric part could not serve (not structurally symmetric, a zero
     /// pivot, GMRES stalled); LU of the exact matrix is used from then on.
     lu_fallback: bool,
+    /// GMRES stalled on the current matrix: its solves use LU.
+    stalled: bool,
+    /// How many times GMRES stalled (each time LU solved instead).
+    pub gmres_stalls: usize,
+    /// SaddleLdlt: keep the last numeric factorisation as the preconditioner of the next
+    /// matrices while GMRES converges fast with it (set by the caller).
+    pub reuse_factor: bool,
+    /// The numeric LDLᵀ is of the current `exact` matrix (not of an earlier one).
+    factor_current: bool,
+    /// The next `factor` must factorise (GMRES was slow with the old factorisation).
+    refresh: bool,
+    /// Numeric factorisations done (deferred ones not counted).
+    pub numeric_count: usize,
+    /// Seconds of the last numeric LDLᵀ and of one preconditioned GMRES iteration: their
+    /// ratio bounds the iterations a reused factorisation may take.
+    factor_seconds: f64,
+    iteration_seconds: f64,
+    /// Failed reuses in a row, and how many factorisations to do before trying again.
+    failed_reuses: u32,
+    skip_reuse: usize,
 }
 
 impl LinearSolver {
@@ -60,11 +80,22 @@ impl LinearSolver {
             transpose: vec![],
             gmres_iterations: 0,
             lu_fallback: false,
+            stalled: false,
+            gmres_stalls: 0,
+            reuse_factor: false,
+            factor_current: false,
+            refresh: true,
+            numeric_count: 0,
+            factor_seconds: 0.0,
+            iteration_seconds: f64::INFINITY,
+            failed_reuses: 0,
+            skip_reuse: 0,
         }
     }
 
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+        self.stalled = false;
         let unchanged = self
             .pattern
             .as_ref()
@@ -115,8 +146,23 @@ impl LinearSolver {
                 } else {
                     self.exact.clone_from(a);
                 }
+                if self.skip_reuse > 0 {
+                    self.skip_reuse -= 1;
+                    self.refresh = true;
+                }
+                if !fresh && self.reuse_factor && !self.refresh {
+                    // deferred: `solve` tries the previous factorisation first
+                    self.factor_current = false;
+                    return Ok(());
+                }
+                self.refresh = false;
+                self.factor_current = true;
+                self.numeric_count += 1;
                 let f = self.ldlt.as_mut().expect("analysed above");
-                if f.factor(a, &self.transpose).is_err() {
+                let t = std::time::Instant::now();
+                let factored = f.factor(a, &self.transpose);
+                self.factor_seconds = t.elapsed().as_secs_f64();
+                if factored.is_err() {
                     // A zero pivot of the symmetric part (possible when the tangent is not
                     // symmetric): LU of the exact matrix decides whether it is singular.
                     self.lu_fallback = true;
@@ -162,7 +208,7 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt if self.lu_fallback => self.solve_lu(b),
+            Method::SaddleLdlt if self.lu_fallback || self.stalled => self.solve_lu(b),
             Method::Lu => self.solve_lu(b),
             Method::SaddleLdlt => self.solve_iterative(b)?,
         }
@@ -178,12 +224,62 @@ impl LinearSolver {
 impl LinearSolver {
     /// A x = b by GMRES on the exact matrix, preconditioned by the LDLᵀ of a symmetric
     /// approximation (`SaddleLdlt::factor`): exact for a symmetric tangent, a few for the contact tangents that are
-    /// not. If GMRES stalls (a tangent far from symmetric), LU of the exact matrix takes over,
-    /// for this solve and the rest of the problem.
+    /// not. If GMRES stalls (a tangent far from symmetric), LU of the exact matrix takes over
+    /// for the solves with this matrix (the next tangent tries GMRES again: a stall is
+    /// usually one friction state, and LU costs several LDLᵀ factorisations).
     fn solve_iterative(&mut self, b: &mut [f64]) -> Result<()> {
         let rhs = b.to_vec();
+        if !self.factor_current {
+            // The factorisation of an earlier tangent as preconditioner: a few GMRES
+            // iterations when the tangent changed little (small steps, few status changes),
+            // as many as cost one factorisation; past half of that the next matrix is
+            // factorised.
+            let budget = (self.factor_seconds / self.iteration_seconds).clamp(2.0, 25.0) as usize;
+            let f = self.ldlt.as_mut().expect("factor before solve");
+            let exact = &self.exact;
+            f.solve(b);
+            let reused = gmres::solve(
+                &mut |v, out| exact.mul_vec(v, out),
+                &mut |v| f.solve(v),
+                &rhs,
+                b,
+                1e-12,
+                budget,
+                budget,
+            );
+            match reused {
+                Ok(its) => {
+                    self.gmres_iterations = its;
+                    self.refresh = 2 * its > budget;
+                    self.failed_reuses = 0;
+                    return Ok(());
+                }
+                Err(_) => {
+                    // factorise this matrix after all, and the next ones for a while
+                    // (doubling after each failure in a row: big steps change the tangent)
+                    self.failed_reuses += 1;
+                    self.skip_reuse = 1 << self.failed_reuses.min(6);
+                    self.numeric_count += 1;
+                    self.factor_current = true;
+                    let f = self.ldlt.as_mut().expect("factor before solve");
+                    if f.factor(&self.exact, &self.transpose).is_err() {
+                        self.stalled = true;
+                        self.gmres_stalls += 1;
+                        let exact = std::mem::take(&mut self.exact);
+                        let factored = self.factor_lu(&exact);
+                        self.exact = exact;
+                        factored?;
+                        b.copy_from_slice(&rhs);
+                        self.solve_lu(b);
+                        return Ok(());
+                    }
+                    b.copy_from_slice(&rhs);
+                }
+            }
+        }
         let f = self.ldlt.as_mut().expect("factor before solve");
         let exact = &self.exact;
+        let t = std::time::Instant::now();
         f.solve(b); // start from M⁻¹ b: enough when the tangent is symmetric
         let result = gmres::solve(
             &mut |v, out| exact.mul_vec(v, out),
@@ -194,13 +290,17 @@ impl LinearSolver {
             30,
             60,
         );
+        if let Ok(its) = result {
+            self.iteration_seconds = t.elapsed().as_secs_f64() / (its + 1) as f64;
+        }
         match result {
             Ok(its) => {
                 self.gmres_iterations = its;
                 Ok(())
             }
             Err(_) => {
-                self.lu_fallback = true;
+                self.stalled = true;
+                self.gmres_stalls += 1;
                 let exact = std::mem::take(&mut self.exact);
                 let factored = self.factor_lu(&exact);
                 self.exact = exact;

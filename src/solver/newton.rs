@@ -65,6 +65,8 @@ pub struct NewtonSettings {
     pub verbose: bool,
     /// Keep the unknowns of every converged step in `NewtonReport::states`.
     pub keep_states: bool,
+    /// Saddle-point solves may precondition with an earlier tangent's factorisation.
+    pub reuse_factor: bool,
 }
 
 impl Default for NewtonSettings {
@@ -77,6 +79,7 @@ impl Default for NewtonSettings {
             max_cuts: 8,
             verbose: false,
             keep_states: false,
+            reuse_factor: true,
         }
     }
 }
@@ -104,6 +107,10 @@ pub struct NewtonReport {
     pub total_iterations: usize,
     pub factorizations: usize,
     pub symbolic_factorizations: usize,
+    /// Numeric LDLᵀ factorisations (the others reused an earlier one).
+    pub numeric_factorizations: usize,
+    /// Linear solves where GMRES stalled and LU solved instead.
+    pub gmres_stalls: usize,
     /// Wall time spent evaluating residuals and tangents, factorising, solving (s).
     pub time_evaluate_s: f64,
     pub time_factor_s: f64,
@@ -161,6 +168,7 @@ pub fn solve(
     let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
     let mut lin = LinearSolver::new(method);
+    lin.reuse_factor = settings.reuse_factor;
     lin.n_primal = problem.num_primal();
     let mut report = NewtonReport::default();
     let ends = settings.step_ends();
@@ -173,6 +181,7 @@ pub fn solve(
     let backtracking = problem.backtracking();
     // the last converged step: (its load-factor increment, its change of the unknowns)
     let mut last_step: Option<(f64, Vec<f64>)> = None;
+    let mut extrapolation_won = false;
     while next < ends.len() {
         let start = if next == 0 { 0.0 } else { ends[next - 1] };
         let dl = (ends[next] - start) / 2f64.powi(level as i32);
@@ -199,7 +208,10 @@ pub fn solve(
                 starts.push(t);
             }
         }
-        if !starts.is_empty() {
+        // Once the extrapolation has won, the plain start is not tried again (one residual
+        // evaluation less per step of a long history).
+        let only_extrapolation = extrapolation_won && starts.len() == 1;
+        if !starts.is_empty() && !only_extrapolation {
             starts.insert(0, x.clone());
             let mut norms = vec![];
             for s in &starts {
@@ -220,7 +232,10 @@ pub fn solve(
             let best = (0..starts.len())
                 .min_by(|&a, &b| measure(&norms[a]).total_cmp(&measure(&norms[b])))
                 .unwrap_or(0);
+            extrapolation_won = last_step.is_some() && best == 1;
             x = starts.swap_remove(best);
+        } else if let Some(start) = starts.pop() {
+            x = start;
         }
         let mut step = StepReport {
             time: lambda,
@@ -379,5 +394,7 @@ pub fn solve(
     // leave the problem at the converged state
     problem.evaluate(&x, t_end, &mut r, false)?;
     report.symbolic_factorizations = lin.symbolic_count;
+    report.gmres_stalls = lin.gmres_stalls;
+    report.numeric_factorizations = lin.numeric_count;
     Ok(report)
 }
