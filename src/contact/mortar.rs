@@ -282,6 +282,16 @@ impl Mortar {
                 }
             }
         }
+        // ∫ N_a r = 0 for a Seg3 corner on the axis when the cell is straight; on a curved
+        // one (a sphere's pole) it is ~1e-7 of the cell's weight: a pressure so weakly
+        // weighted is undetermined (and slows Newton), so such a node gets the zero weight
+        // of the straight case (its force, λ D, is below 1e-6 of the cell's anyway).
+        let dsum: f64 = d.iter().map(|v| v.abs()).sum();
+        for v in d.iter_mut() {
+            if v.abs() <= 1e-6 * dsum {
+                *v = 0.0;
+            }
+        }
         let minv = invert(&m, nn);
         let mut amat = [[0.0; 3]; 3];
         for a in 0..nn {
@@ -498,7 +508,11 @@ impl Mortar {
     fn branch(&self, j: usize, lam: &[f64], slip: f64, d: f64, lmax: f64, mu: f64) -> Branch {
         let nm = self.mult_nodes.len();
         let pressure = lam[j];
-        if !self.active[j] || self.friction_excluded.contains(&j) || pressure <= 1e-8 * lmax {
+        if !self.active[j]
+            || d == 0.0
+            || self.friction_excluded.contains(&j)
+            || pressure <= 1e-8 * lmax
+        {
             return Branch::Free;
         }
         let cf = self.trial_scale.get(j).copied().unwrap_or(1.0);
@@ -621,30 +635,39 @@ impl ContactPair for Mortar {
             }
         }
         self.last_d.borrow_mut().clone_from(&d);
+        // a node without weight (on the axis) carries no contact constraint
+        let active: Vec<bool> = (0..nm).map(|j| self.active[j] && d[j] != 0.0).collect();
         // Augmentation on active nodes: the force of the energy (c/2) g̃_j²/D_j, zero at
         // convergence (g̃_j = 0) but giving the displacement block the stiffness that holds
         // bodies only held by contact, so that the saddle-point LDLT needs no pivoting.
         let mut fj: Vec<Vec<(usize, f64)>> = vec![vec![]; nm];
         for t in &terms {
             for &(j, dof, v) in &t.force {
-                if self.active[j] {
+                if active[j] {
                     fj[j].push((dof, v));
                 }
             }
         }
         for j in 0..nm {
-            if self.active[j] {
+            if active[j] {
                 for &(dof, v) in &fj[j] {
                     ru[dof] += -self.c * g[j] / d[j] * v;
                 }
             }
         }
+        // a weightless node's multiplier is set to zero by a row of the typical weight
+        let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let row_d = |j: usize| if d[j] != 0.0 { d[j] } else { dref };
         for j in 0..nm {
-            if self.active[j] {
+            if active[j] {
                 rl[j] += -g[j];
             } else {
-                rl[j] += -lam[j] * d[j] / self.c;
-                k.add(ndof + mult_base + j, ndof + mult_base + j, -d[j] / self.c);
+                rl[j] += -lam[j] * row_d(j) / self.c;
+                k.add(
+                    ndof + mult_base + j,
+                    ndof + mult_base + j,
+                    -row_d(j) / self.c,
+                );
             }
         }
         // Coulomb friction per slave node (semi-smooth, decided from the iterate): with the
@@ -674,8 +697,8 @@ impl ContactPair for Mortar {
                 law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 match law[j] {
                     Branch::Free => {
-                        rl[nm + j] += -tj * d[j] / self.c;
-                        k.add(row, row, -d[j] / self.c);
+                        rl[nm + j] += -tj * row_d(j) / self.c;
+                        k.add(row, row, -row_d(j) / self.c);
                     }
                     Branch::Stick => rl[nm + j] += -sl[j],
                     Branch::Slip(sg) => {
@@ -738,7 +761,7 @@ impl ContactPair for Mortar {
                 }
             }
             for ((j, row), v) in df {
-                let aug = if self.active[j] {
+                let aug = if active[j] {
                     -self.c * g[j] / d[j]
                 } else {
                     0.0
@@ -746,7 +769,7 @@ impl ContactPair for Mortar {
                 k.add(row, dof, (lam[j] + aug) * v);
             }
             for j in 0..nm {
-                if self.active[j] && (dg[j] != 0.0 || dd[j] != 0.0) {
+                if active[j] && (dg[j] != 0.0 || dd[j] != 0.0) {
                     let (gj, dj) = (g[j], d[j]);
                     for &(row, v) in &fj[j] {
                         k.add(
@@ -758,7 +781,7 @@ impl ContactPair for Mortar {
                 }
             }
             for j in 0..nm {
-                let v = if self.active[j] {
+                let v = if active[j] {
                     -dg[j]
                 } else {
                     -lam[j] * dd[j] / self.c
@@ -802,7 +825,7 @@ impl ContactPair for Mortar {
         }
         let (g, d, facing, sl) = self.gaps(mesh, u);
         for j in 0..self.active.len() {
-            let active = facing[j] && lam[j] - self.c * g[j] / d[j] > 0.0;
+            let active = facing[j] && d[j] != 0.0 && lam[j] - self.c * g[j] / d[j] > 0.0;
             if active != self.active[j] {
                 changes += 1;
                 self.active[j] = active;
@@ -862,10 +885,11 @@ impl ContactPair for Mortar {
         let scale = lam[..nm]
             .iter()
             .fold(self.pressure_floor, |m, v| m.max(v.abs()));
+        let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let worst = rl
             .iter()
             .enumerate()
-            .map(|(k, r)| (r * self.c / d[k % nm]).abs())
+            .map(|(k, r)| (r * self.c / if d[k % nm] != 0.0 { d[k % nm] } else { dref }).abs())
             .fold(0.0f64, f64::max);
         if scale > 0.0 {
             worst / scale
@@ -889,6 +913,7 @@ impl ContactPair for Mortar {
         let d = self.last_d.borrow();
         let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let weightless = |k: usize| d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax);
+
         for nodes in &self.cell_mults {
             if let [a, b, mid] = nodes[..] {
                 for (end, far) in [(a, b), (b, a)] {
