@@ -9,7 +9,7 @@
 
 mod mesh;
 pub mod report;
-mod run;
+pub mod run;
 pub mod study;
 pub mod validate;
 
