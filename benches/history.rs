@@ -23,8 +23,14 @@ fn main() {
     let mut runs = vec![("C history, built-in mesh", example.clone())];
     if reference.exists() {
         let file = format!("file = \"{}\"\n", reference.display());
-        runs.push(("C history, ssnp154a.msh", example.replace(mesh_table, &file)));
-        runs.push(("A history, ssnp154a.msh", frictionless.replace(mesh_table, &file)));
+        runs.push((
+            "C history, ssnp154a.msh",
+            example.replace(mesh_table, &file),
+        ));
+        runs.push((
+            "A history, ssnp154a.msh",
+            frictionless.replace(mesh_table, &file),
+        ));
     }
     let dir = std::env::temp_dir().join(format!("tribo-bench-history-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();

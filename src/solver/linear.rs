@@ -263,15 +263,7 @@ impl LinearSolver {
                     self.factor_current = true;
                     let f = self.ldlt.as_mut().expect("factor before solve");
                     if f.factor(&self.exact, &self.transpose).is_err() {
-                        self.stalled = true;
-                        self.gmres_stalls += 1;
-                        let exact = std::mem::take(&mut self.exact);
-                        let factored = self.factor_lu(&exact);
-                        self.exact = exact;
-                        factored?;
-                        b.copy_from_slice(&rhs);
-                        self.solve_lu(b);
-                        return Ok(());
+                        return self.solve_by_lu(&rhs, b);
                     }
                     b.copy_from_slice(&rhs);
                 }
@@ -290,26 +282,28 @@ impl LinearSolver {
             30,
             60,
         );
-        if let Ok(its) = result {
-            self.iteration_seconds = t.elapsed().as_secs_f64() / (its + 1) as f64;
-        }
         match result {
             Ok(its) => {
+                self.iteration_seconds = t.elapsed().as_secs_f64() / (its + 1) as f64;
                 self.gmres_iterations = its;
                 Ok(())
             }
-            Err(_) => {
-                self.stalled = true;
-                self.gmres_stalls += 1;
-                let exact = std::mem::take(&mut self.exact);
-                let factored = self.factor_lu(&exact);
-                self.exact = exact;
-                factored?;
-                b.copy_from_slice(&rhs);
-                self.solve_lu(b);
-                Ok(())
-            }
+            Err(_) => self.solve_by_lu(&rhs, b),
         }
+    }
+
+    /// LU of the current matrix solves `rhs` into `b` (GMRES stalled or the symmetric part
+    /// has a zero pivot); the next matrix tries LDLᵀ and GMRES again.
+    fn solve_by_lu(&mut self, rhs: &[f64], b: &mut [f64]) -> Result<()> {
+        self.stalled = true;
+        self.gmres_stalls += 1;
+        let exact = std::mem::take(&mut self.exact);
+        let factored = self.factor_lu(&exact);
+        self.exact = exact;
+        factored?;
+        b.copy_from_slice(rhs);
+        self.solve_lu(b);
+        Ok(())
     }
 }
 
