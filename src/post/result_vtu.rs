@@ -145,15 +145,21 @@ pub fn write_series(
     s: &Setting,
     states: &[(f64, State)],
 ) -> Result<Vec<PathBuf>> {
-    let mut files = vec![];
-    let mut entries = vec![];
-    for (k, (time, st)) in states.iter().enumerate() {
-        let name = format!("{stem}_{:04}.vtu", k + 1);
-        let f = dir.join(&name);
-        write_state(&f, s, st)?;
-        entries.push((*time, name));
-        files.push(f);
-    }
+    use rayon::prelude::*;
+    let names: Vec<String> = (1..=states.len())
+        .map(|k| format!("{stem}_{k:04}.vtu"))
+        .collect();
+    // one file per state, independent: written in parallel (100-step histories)
+    states
+        .par_iter()
+        .zip(&names)
+        .try_for_each(|((_, st), name)| write_state(&dir.join(name), s, st))?;
+    let entries: Vec<(f64, String)> = states
+        .iter()
+        .zip(&names)
+        .map(|((t, _), n)| (*t, n.clone()))
+        .collect();
+    let mut files: Vec<PathBuf> = names.iter().map(|n| dir.join(n)).collect();
     let pvd = dir.join(format!("{stem}.pvd"));
     vtu::write_pvd(&pvd, &entries)?;
     files.push(pvd);

@@ -54,10 +54,6 @@ pub struct LinearSolver {
     refresh: bool,
     /// Numeric factorisations done (deferred ones not counted).
     pub numeric_count: usize,
-    /// Seconds of the last numeric LDLᵀ and of one preconditioned GMRES iteration: their
-    /// ratio bounds the iterations a reused factorisation may take.
-    factor_seconds: f64,
-    iteration_seconds: f64,
     /// Failed reuses in a row, and how many factorisations to do before trying again.
     failed_reuses: u32,
     skip_reuse: usize,
@@ -86,8 +82,6 @@ impl LinearSolver {
             factor_current: false,
             refresh: true,
             numeric_count: 0,
-            factor_seconds: 0.0,
-            iteration_seconds: f64::INFINITY,
             failed_reuses: 0,
             skip_reuse: 0,
         }
@@ -159,10 +153,7 @@ impl LinearSolver {
                 self.factor_current = true;
                 self.numeric_count += 1;
                 let f = self.ldlt.as_mut().expect("analysed above");
-                let t = std::time::Instant::now();
-                let factored = f.factor(a, &self.transpose);
-                self.factor_seconds = t.elapsed().as_secs_f64();
-                if factored.is_err() {
+                if f.factor(a, &self.transpose).is_err() {
                     // A zero pivot of the symmetric part (possible when the tangent is not
                     // symmetric): LU of the exact matrix decides whether it is singular.
                     self.lu_fallback = true;
@@ -221,6 +212,10 @@ impl LinearSolver {
     }
 }
 
+/// GMRES iterations allowed with a reused factorisation (about the cost of one
+/// factorisation on the SSNP154 meshes).
+const REUSE_ITERATIONS: usize = 8;
+
 impl LinearSolver {
     /// A x = b by GMRES on the exact matrix, preconditioned by the LDLᵀ of a symmetric
     /// approximation (`SaddleLdlt::factor`): exact for a symmetric tangent, a few for the contact tangents that are
@@ -231,10 +226,10 @@ impl LinearSolver {
         let rhs = b.to_vec();
         if !self.factor_current {
             // The factorisation of an earlier tangent as preconditioner: a few GMRES
-            // iterations when the tangent changed little (small steps, few status changes),
-            // as many as cost one factorisation; past half of that the next matrix is
-            // factorised.
-            let budget = (self.factor_seconds / self.iteration_seconds).clamp(2.0, 25.0) as usize;
+            // iterations when the tangent changed little (small steps, few status changes).
+            // A fixed budget (not a timed one) keeps the results reproducible bit for bit;
+            // past half of it the next matrix is factorised.
+            let budget = REUSE_ITERATIONS;
             let f = self.ldlt.as_mut().expect("factor before solve");
             let exact = &self.exact;
             f.solve(b);
@@ -271,7 +266,6 @@ impl LinearSolver {
         }
         let f = self.ldlt.as_mut().expect("factor before solve");
         let exact = &self.exact;
-        let t = std::time::Instant::now();
         f.solve(b); // start from M⁻¹ b: enough when the tangent is symmetric
         let result = gmres::solve(
             &mut |v, out| exact.mul_vec(v, out),
@@ -284,7 +278,6 @@ impl LinearSolver {
         );
         match result {
             Ok(its) => {
-                self.iteration_seconds = t.elapsed().as_secs_f64() / (its + 1) as f64;
                 self.gmres_iterations = its;
                 Ok(())
             }

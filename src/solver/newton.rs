@@ -168,7 +168,6 @@ pub fn solve(
     let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
     let mut lin = LinearSolver::new(method);
-    lin.reuse_factor = settings.reuse_factor;
     lin.n_primal = problem.num_primal();
     let mut report = NewtonReport::default();
     let ends = settings.step_ends();
@@ -319,6 +318,10 @@ pub fn solve(
                 break;
             }
             let t = std::time::Instant::now();
+            // An earlier factorisation may precondition the first solve of a step (the
+            // tangent barely moved since the last converged state); later iterations of a
+            // step change it more than GMRES recovers cheaply (SSNP154 F: 20 % slower).
+            lin.reuse_factor = settings.reuse_factor && it == 0;
             if let Err(e) = lin.factor(problem.matrix()) {
                 failure = Some(e.to_string());
                 break;
@@ -344,7 +347,9 @@ pub fn solve(
             if step_size > 1e6 * problem.length_scale() {
                 failure = Some(format!(
                     "the stiffness matrix is singular (displacement increment {step_size:.1e}): the model has a \
-                     rigid-body mode (a body not held by imposed displacements or contact)"
+                     rigid-body mode (a body not held by imposed displacements or contact; a body \
+                     held by contact alone needs some contact points closed at the start: \
+                     initial = \"closed\" with initial_gap = a small distance)"
                 ));
                 break;
             }
