@@ -5,7 +5,7 @@ use super::schema::CaseFile;
 use crate::assembly::loads::{add_edge_load, add_nodal_force, EdgeLoad};
 use crate::error::{Error, Result};
 use crate::mesh::Mesh;
-use crate::solver::history::{step_ends, Imposed, Loading, TimeFunction};
+use crate::solver::history::{rigid_displacement, step_ends, Imposed, Loading, TimeFunction};
 use std::collections::BTreeMap;
 
 /// The named functions of `[[function]]`.
@@ -40,6 +40,18 @@ fn lookup(
             }
         ))
     })
+}
+
+/// The force vector of time function `f` in `forces`, added (zero) if new.
+fn slot(forces: &mut Vec<(Vec<f64>, TimeFunction)>, f: TimeFunction, ndof: usize) -> &mut [f64] {
+    let i = match forces.iter().position(|(_, g)| *g == f) {
+        Some(i) => i,
+        None => {
+            forces.push((vec![0.0; ndof], f));
+            forces.len() - 1
+        }
+    };
+    &mut forces[i].0
 }
 
 /// The imposed dofs (dof, value at f = 1) for the dof map, and the loading.
@@ -99,72 +111,41 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
             function,
         };
         // the values at f = 1, for the dof map's checks of the relations
-        let (sin, cos) = spec.angle.to_radians().sin_cos();
         for &n in &nodes {
-            let x = mesh.coords[n];
-            let (rx, ry) = (x[0] - spec.center[0], x[1] - spec.center[1]);
-            fixed.push((2 * n, spec.center[0] + cos * rx - sin * ry + spec.dx - x[0]));
-            fixed.push((
-                2 * n + 1,
-                spec.center[1] + sin * rx + cos * ry + spec.dy - x[1],
-            ));
+            let u = rigid_displacement(
+                mesh.coords[n],
+                spec.center,
+                spec.angle.to_radians(),
+                [spec.dx, spec.dy],
+            );
+            fixed.push((2 * n, u[0]));
+            fixed.push((2 * n + 1, u[1]));
         }
         imposed.push(entry);
     }
     // One force vector per distinct time function.
     let mut forces: Vec<(Vec<f64>, TimeFunction)> = vec![];
-    let mut slot = |f: TimeFunction| -> usize {
-        match forces.iter().position(|(_, g)| *g == f) {
-            Some(i) => i,
-            None => {
-                forces.push((vec![0.0; ndof], f));
-                forces.len() - 1
-            }
-        }
-    };
-    // (force slot, what adds the load to it): run after every function is looked up
-    type AddLoad<'a> = Box<dyn Fn(&mut [f64]) -> Result<()> + 'a>;
-    let mut pending: Vec<(usize, AddLoad)> = vec![];
     for spec in &case.force {
         let what = format!("[[force]] on '{}'", spec.group);
-        let i = slot(lookup(&funcs, &spec.function, &what)?);
+        let f = slot(&mut forces, lookup(&funcs, &spec.function, &what)?, ndof);
         let nodes = mesh
             .node_group(&spec.group)
             .map_err(|e| Error::model(format!("[[force]]: {e}")))?;
-        pending.push((
-            i,
-            Box::new(move |f: &mut [f64]| {
-                add_nodal_force(f, &nodes, [spec.fx, spec.fy]);
-                Ok(())
-            }),
-        ));
+        add_nodal_force(f, &nodes, [spec.fx, spec.fy]);
     }
     for spec in &case.pressure {
         let what = format!("[[pressure]] on '{}'", spec.group);
-        let i = slot(lookup(&funcs, &spec.function, &what)?);
-        pending.push((
-            i,
-            Box::new(move |f: &mut [f64]| {
-                let load = EdgeLoad::Pressure(spec.p);
-                add_edge_load(mesh, &spec.group, load, m.modelisation, m.thickness, f)
-                    .map_err(|e| Error::model(format!("[[pressure]]: {e}")))
-            }),
-        ));
+        let f = slot(&mut forces, lookup(&funcs, &spec.function, &what)?, ndof);
+        let load = EdgeLoad::Pressure(spec.p);
+        add_edge_load(mesh, &spec.group, load, m.modelisation, m.thickness, f)
+            .map_err(|e| Error::model(format!("[[pressure]]: {e}")))?;
     }
     for spec in &case.traction {
         let what = format!("[[traction]] on '{}'", spec.group);
-        let i = slot(lookup(&funcs, &spec.function, &what)?);
-        pending.push((
-            i,
-            Box::new(move |f: &mut [f64]| {
-                let load = EdgeLoad::Traction([spec.tx, spec.ty]);
-                add_edge_load(mesh, &spec.group, load, m.modelisation, m.thickness, f)
-                    .map_err(|e| Error::model(format!("[[traction]]: {e}")))
-            }),
-        ));
-    }
-    for (i, add) in pending {
-        add(&mut forces[i].0)?;
+        let f = slot(&mut forces, lookup(&funcs, &spec.function, &what)?, ndof);
+        let load = EdgeLoad::Traction([spec.tx, spec.ty]);
+        add_edge_load(mesh, &spec.group, load, m.modelisation, m.thickness, f)
+            .map_err(|e| Error::model(format!("[[traction]]: {e}")))?;
     }
     let mut relation_functions = vec![];
     for (i, r) in case.relation.iter().enumerate() {

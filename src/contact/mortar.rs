@@ -590,6 +590,13 @@ fn invert(m: &[[f64; 3]; 3], n: usize) -> [[f64; 3]; 3] {
     inv
 }
 
+/// The weight D_j scaling each node's multiplier rows; a weightless node (on the axis) gets
+/// the largest weight, so that its row sets its multiplier to zero on the usual scale.
+fn row_weights(d: &[f64]) -> Vec<f64> {
+    let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    d.iter().map(|&v| if v != 0.0 { v } else { dref }).collect()
+}
+
 impl ContactPair for Mortar {
     fn num_multipliers(&self) -> usize {
         self.mult_nodes.len() * if self.friction.is_some() { 2 } else { 1 }
@@ -655,18 +662,16 @@ impl ContactPair for Mortar {
                 }
             }
         }
-        // a weightless node's multiplier is set to zero by a row of the typical weight
-        let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let row_d = |j: usize| if d[j] != 0.0 { d[j] } else { dref };
+        let row_d = row_weights(&d);
         for j in 0..nm {
             if active[j] {
                 rl[j] += -g[j];
             } else {
-                rl[j] += -lam[j] * row_d(j) / self.c;
+                rl[j] += -lam[j] * row_d[j] / self.c;
                 k.add(
                     ndof + mult_base + j,
                     ndof + mult_base + j,
-                    -row_d(j) / self.c,
+                    -row_d[j] / self.c,
                 );
             }
         }
@@ -697,8 +702,8 @@ impl ContactPair for Mortar {
                 law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 match law[j] {
                     Branch::Free => {
-                        rl[nm + j] += -tj * row_d(j) / self.c;
-                        k.add(row, row, -row_d(j) / self.c);
+                        rl[nm + j] += -tj * row_d[j] / self.c;
+                        k.add(row, row, -row_d[j] / self.c);
                     }
                     Branch::Stick => rl[nm + j] += -sl[j],
                     Branch::Slip(sg) => {
@@ -885,11 +890,11 @@ impl ContactPair for Mortar {
         let scale = lam[..nm]
             .iter()
             .fold(self.pressure_floor, |m, v| m.max(v.abs()));
-        let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let w = row_weights(&d);
         let worst = rl
             .iter()
             .enumerate()
-            .map(|(k, r)| (r * self.c / if d[k % nm] != 0.0 { d[k % nm] } else { dref }).abs())
+            .map(|(k, r)| (r * self.c / w[k % nm]).abs())
             .fold(0.0f64, f64::max);
         if scale > 0.0 {
             worst / scale
@@ -913,7 +918,6 @@ impl ContactPair for Mortar {
         let d = self.last_d.borrow();
         let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let weightless = |k: usize| d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax);
-
         for nodes in &self.cell_mults {
             if let [a, b, mid] = nodes[..] {
                 for (end, far) in [(a, b), (b, a)] {

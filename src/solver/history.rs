@@ -85,6 +85,22 @@ pub enum Imposed {
     },
 }
 
+/// The displacement of the point `x` under a rotation by `angle` (radians,
+/// counter-clockwise) about `center` followed by a translation.
+pub fn rigid_displacement(
+    x: [f64; 2],
+    center: [f64; 2],
+    angle: f64,
+    translation: [f64; 2],
+) -> [f64; 2] {
+    let (sin, cos) = angle.sin_cos();
+    let (rx, ry) = (x[0] - center[0], x[1] - center[1]);
+    [
+        center[0] + cos * rx - sin * ry + translation[0] - x[0],
+        center[1] + sin * rx + cos * ry + translation[1] - x[1],
+    ]
+}
+
 /// All time-dependent data of a problem.
 #[derive(Clone, Debug)]
 pub struct Loading {
@@ -152,15 +168,15 @@ impl Loading {
                     function,
                 } => {
                     let s = function.value(t);
-                    let (sin, cos) = (s * angle).sin_cos();
                     for &(n, x) in nodes {
-                        let (rx, ry) = (x[0] - center[0], x[1] - center[1]);
-                        let moved = [
-                            center[0] + cos * rx - sin * ry + s * translation[0],
-                            center[1] + sin * rx + cos * ry + s * translation[1],
-                        ];
-                        out[2 * n] = moved[0] - x[0];
-                        out[2 * n + 1] = moved[1] - x[1];
+                        let u = rigid_displacement(
+                            x,
+                            *center,
+                            s * angle,
+                            [s * translation[0], s * translation[1]],
+                        );
+                        out[2 * n] = u[0];
+                        out[2 * n + 1] = u[1];
                     }
                 }
             }

@@ -39,7 +39,7 @@ pub struct LinearSolver {
     /// GMRES iterations done in the last solve (SaddleLdlt).
     pub gmres_iterations: usize,
     /// SaddleLdlt: the symmetric part could not serve (not structurally symmetric, a zero
-    /// pivot, GMRES stalled); LU of the exact matrix is used from then on.
+    /// pivot at a fresh factorisation); LU of the exact matrix is used from then on.
     lu_fallback: bool,
     /// GMRES stalled on the current matrix: its solves use LU.
     stalled: bool,

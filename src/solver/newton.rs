@@ -178,6 +178,10 @@ pub fn solve(
     let mut level = 0u32;
     let mut cuts = 0;
     let backtracking = problem.backtracking();
+    let meets_tolerance = |n: &Norms| {
+        n.relative() <= settings.tolerance
+            || (n.residual == 0.0 && n.constraint <= settings.tolerance)
+    };
     // the last converged step: (its load-factor increment, its change of the unknowns)
     let mut last_step: Option<(f64, Vec<f64>)> = None;
     let mut extrapolation_won = false;
@@ -254,10 +258,7 @@ pub fn solve(
             let prev = step.iterations.last().map(|i| i.relative_residual);
             let likely_converged = changes == 0 && prev.is_some_and(|p| p < 1e-3);
             let mut norms = problem.evaluate(&x, lambda, &mut r, !likely_converged)?;
-            if likely_converged
-                && !(norms.relative() <= settings.tolerance
-                    || (norms.residual == 0.0 && norms.constraint <= settings.tolerance))
-            {
+            if likely_converged && !meets_tolerance(&norms) {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
             // Backtracking: a full correction that raised the residual without changing any
@@ -302,8 +303,7 @@ pub fn solve(
             // against, e.g. a pure rigid motion) a correction at round-off size.
             if it > 0
                 && changes == 0
-                && (rel <= settings.tolerance
-                    || (norms.residual == 0.0 && norms.constraint <= settings.tolerance)
+                && (meets_tolerance(&norms)
                     || (last_size <= 1e-10 * problem.length_scale()
                         && norms.constraint <= settings.tolerance))
             {
