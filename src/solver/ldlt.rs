@@ -1,27 +1,29 @@
-//! LDLᵀ of symmetric saddle-point matrices [K Bᵀ; B C] (displacements, then multipliers)
-//! without pivoting, made safe by the ordering: AMD on the displacement graph in which each
-//! multiplier's coupled displacements form a clique, then every multiplier placed right
-//! after the last of its coupled displacements. With K positive definite each multiplier
-//! pivot is then a (negative) Schur complement, never zero (shared/design/dependencies.md).
+//! LDLᵀ without pivoting in a fixed order (`OrderedLdlt`), and its use for symmetric
+//! saddle-point matrices [K Bᵀ; B C] (displacements, then multipliers), made safe by the
+//! ordering: AMD on the displacement graph in which each multiplier's coupled
+//! displacements form a clique, then every multiplier placed right after the last of its
+//! coupled displacements. With K positive definite each multiplier pivot is then a
+//! (negative) Schur complement, never zero (shared/design/dependencies.md).
 
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
+use faer::sparse::linalg::cholesky::supernodal::SupernodalLdltRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, SymbolicCholesky,
-    SymmetricOrdering,
+    SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::SymbolicSparseColMatRef;
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Conj, Mat, MatMut, Par, Side};
 
-/// The analysis (ordering, permuted pattern, symbolic factorisation) is done once per
-/// pattern; each numeric factorisation writes a symmetric approximation of the matrix (see
-/// `factor`) straight into the permuted lower triangle, so faer has nothing to permute, and
-/// reuses its storage.
-pub struct SaddleLdlt {
-    /// Constrained order: position i of the factorised matrix is unknown `fwd[i]`.
+/// LDLᵀ without pivoting of P A Pᵀ for a fixed pattern of A and a fixed ordering. The
+/// analysis (permuted pattern, symbolic factorisation) is done once; each numeric
+/// factorisation writes its values straight into the permuted lower triangle, so faer has
+/// nothing to permute, and reuses its storage.
+pub struct OrderedLdlt {
+    /// Position i of the factorised matrix is unknown `fwd[i]`.
     fwd: Vec<usize>,
     /// P A Pᵀ, lower triangle.
     permuted: SparseMatrix,
@@ -32,40 +34,15 @@ pub struct SaddleLdlt {
     /// Factorisation and solve workspaces, kept between factorisations.
     scratch: MemBuffer,
     solve_scratch: MemBuffer,
-    /// Number of displacement unknowns (the multipliers follow).
-    np: usize,
 }
 
 const NONE: usize = usize::MAX;
 
-/// The constrained ordering (forward permutation) of `a` whose first `np` unknowns are primal.
-pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
-    let n = a.n;
-    let mut adj: Vec<Vec<usize>> = vec![vec![]; np];
-    let mut coupled: Vec<Vec<usize>> = vec![vec![]; n - np];
-    for c in 0..n {
-        for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
-            if c < np && r < np {
-                adj[c].push(r);
-            } else if c >= np && r < np {
-                coupled[c - np].push(r);
-            }
-        }
-    }
-    for list in &mut coupled {
-        list.sort_unstable();
-        list.dedup();
-        for &i in list.iter() {
-            adj[i].extend_from_slice(list);
-        }
-    }
-    for (j, list) in adj.iter_mut().enumerate() {
-        list.push(j);
-        list.sort_unstable();
-        list.dedup();
-    }
-    // Unknowns with the same adjacency (the two dofs of a node) are ordered together: AMD
-    // runs on the graph of these groups, about four times smaller.
+/// AMD on the graph `adj` (each list sorted, holding its own index). Unknowns with the
+/// same adjacency (the two dofs of a node) are ordered together: AMD runs on the graph of
+/// these groups, about four times smaller. Returns the elimination order.
+fn grouped_amd(adj: &[Vec<usize>]) -> Result<Vec<usize>> {
+    let np = adj.len();
     let mut group_of = vec![0usize; np];
     let mut groups: Vec<usize> = vec![]; // first unknown of each group
     for j in 0..np {
@@ -110,6 +87,59 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
         let first = groups[g];
         perm.extend((first..np).take_while(|&j| group_of[j] == g));
     }
+    Ok(perm)
+}
+
+/// AMD order of the leading `np` unknowns of `a` on their own graph (the other unknowns
+/// ignored), for an ordering that places the others last.
+pub fn leading_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
+    let adj: Vec<Vec<usize>> = (0..np)
+        .map(|c| {
+            let mut list: Vec<usize> = a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]]
+                .iter()
+                .copied()
+                .filter(|&r| r < np)
+                .collect();
+            if list.binary_search(&c).is_err() {
+                list.push(c);
+                list.sort_unstable();
+            }
+            list
+        })
+        .collect();
+    grouped_amd(&adj)
+}
+
+/// The constrained ordering (forward permutation) of `a` whose first `np` unknowns are
+/// primal: AMD on the displacement graph in which each multiplier's coupled displacements
+/// form a clique, then every multiplier placed right after the last of its coupled
+/// displacements.
+pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
+    let n = a.n;
+    let mut adj: Vec<Vec<usize>> = vec![vec![]; np];
+    let mut coupled: Vec<Vec<usize>> = vec![vec![]; n - np];
+    for c in 0..n {
+        for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
+            if c < np && r < np {
+                adj[c].push(r);
+            } else if c >= np && r < np {
+                coupled[c - np].push(r);
+            }
+        }
+    }
+    for list in &mut coupled {
+        list.sort_unstable();
+        list.dedup();
+        for &i in list.iter() {
+            adj[i].extend_from_slice(list);
+        }
+    }
+    for (j, list) in adj.iter_mut().enumerate() {
+        list.push(j);
+        list.sort_unstable();
+        list.dedup();
+    }
+    let perm = grouped_amd(&adj)?;
     let mut perm_inv = vec![0usize; np];
     for (i, &j) in perm.iter().enumerate() {
         perm_inv[j] = i;
@@ -131,11 +161,10 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
     Ok(order)
 }
 
-impl SaddleLdlt {
-    /// Orders and analyses `a` (first `np` unknowns primal).
-    pub fn new(a: &SparseMatrix, np: usize) -> Result<Self> {
+impl OrderedLdlt {
+    /// Analyses the pattern of `a` (structurally symmetric) in the order `fwd`.
+    pub fn new(a: &SparseMatrix, fwd: Vec<usize>) -> Result<Self> {
         let n = a.n;
-        let fwd = constrained_order(a, np)?;
         let mut inv = vec![0usize; n];
         for (i, &p) in fwd.iter().enumerate() {
             inv[p] = i;
@@ -187,7 +216,7 @@ impl SaddleLdlt {
             symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
         );
         let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
-        Ok(SaddleLdlt {
+        Ok(OrderedLdlt {
             fwd,
             permuted,
             map,
@@ -195,31 +224,22 @@ impl SaddleLdlt {
             symbolic,
             scratch,
             solve_scratch,
-            np,
         })
     }
 
-    /// Factorises a symmetric matrix equal to `a` when `a` is symmetric (the pattern given
-    /// to `new`); `transpose[p]` is the position in `a` of the transpose of entry p.
-    pub fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
-        // The symmetric matrix factorised: the displacement block's symmetric part, and
-        // for the multiplier couplings the displacement rows (the contact forces), mirrored
-        // onto the constraint rows. With friction this is a better preconditioner for GMRES
-        // on the exact matrix than the symmetric part (SSNP154 D: 213 -> 108 iterations).
+    /// Factorises the symmetric matrix whose lower triangle (in the factorised order) takes
+    /// `value(p, row, col)` at each entry p = (row, col) of A's pattern that lands there.
+    pub fn factor_with(
+        &mut self,
+        a: &SparseMatrix,
+        value: impl Fn(usize, usize, usize) -> f64,
+    ) -> Result<()> {
         for col in 0..a.n {
             for p in a.col_ptr[col]..a.col_ptr[col + 1] {
                 let q = self.map[p];
-                if q == NONE {
-                    continue;
+                if q != NONE {
+                    self.permuted.values[q] = value(p, a.row_idx[p], col);
                 }
-                let row = a.row_idx[p];
-                self.permuted.values[q] = if row < self.np && col < self.np {
-                    0.5 * (a.values[p] + a.values[transpose[p]])
-                } else if row <= col {
-                    a.values[p]
-                } else {
-                    a.values[transpose[p]]
-                };
             }
         }
         self.symbolic
@@ -255,6 +275,84 @@ impl SaddleLdlt {
         for (&i, &v) in self.fwd.iter().zip(&y) {
             b[i] = v;
         }
+    }
+
+    /// The last `k` columns of the factor: the unit lower triangle L and the pivots D of
+    /// the trailing k × k block (L D Lᵀ is the Schur complement of the leading unknowns).
+    pub fn trailing_block(&self, k: usize) -> (Mat<f64>, Vec<f64>) {
+        let n = self.fwd.len();
+        let first = n - k;
+        let mut l = Mat::<f64>::zeros(k, k);
+        let mut d = vec![0.0; k];
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            unreachable!("the analysis forces the supernodal kernel")
+        };
+        let ldlt = SupernodalLdltRef::new(sym, &self.values);
+        for s in 0..sym.n_supernodes() {
+            let (begin, end) = (sym.supernode_begin()[s], sym.supernode_end()[s]);
+            if end <= first {
+                continue;
+            }
+            let node = ldlt.supernode(s);
+            let block = node.val();
+            let below = node.pattern();
+            for j in begin.max(first)..end {
+                let cj = j - begin;
+                d[j - first] = block[(cj, cj)];
+                l[(j - first, j - first)] = 1.0;
+                for i in j + 1..end {
+                    l[(i - first, j - first)] = block[(i - begin, cj)];
+                }
+                for (t, &i) in below.iter().enumerate() {
+                    l[(i - first, j - first)] = block[(end - begin + t, cj)];
+                }
+            }
+        }
+        (l, d)
+    }
+}
+
+/// LDLᵀ of symmetric saddle-point matrices [K Bᵀ; B C] (displacements, then multipliers)
+/// in the constrained order (`constrained_order`), of a symmetric approximation of the
+/// matrix (see `factor`).
+pub struct SaddleLdlt {
+    ldlt: OrderedLdlt,
+    /// Number of displacement unknowns (the multipliers follow).
+    np: usize,
+}
+
+impl SaddleLdlt {
+    /// Orders and analyses `a` (first `np` unknowns primal).
+    pub fn new(a: &SparseMatrix, np: usize) -> Result<Self> {
+        let fwd = constrained_order(a, np)?;
+        Ok(SaddleLdlt {
+            ldlt: OrderedLdlt::new(a, fwd)?,
+            np,
+        })
+    }
+
+    /// Factorises a symmetric matrix equal to `a` when `a` is symmetric (the pattern given
+    /// to `new`); `transpose[p]` is the position in `a` of the transpose of entry p.
+    pub fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
+        // The symmetric matrix factorised: the displacement block's symmetric part, and
+        // for the multiplier couplings the displacement rows (the contact forces), mirrored
+        // onto the constraint rows. With friction this is a better preconditioner for GMRES
+        // on the exact matrix than the symmetric part (SSNP154 D: 213 -> 108 iterations).
+        let np = self.np;
+        self.ldlt.factor_with(a, |p, row, col| {
+            if row < np && col < np {
+                0.5 * (a.values[p] + a.values[transpose[p]])
+            } else if row <= col {
+                a.values[p]
+            } else {
+                a.values[transpose[p]]
+            }
+        })
+    }
+
+    /// Solves with the last factorisation, in place.
+    pub fn solve(&mut self, b: &mut [f64]) {
+        self.ldlt.solve(b);
     }
 }
 
@@ -317,5 +415,56 @@ mod tests {
                 .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
             assert!(err < 1e-12, "shift {shift}: error {err}");
         }
+    }
+
+    /// The trailing block of the factor, L D Lᵀ, is the Schur complement of the leading
+    /// unknowns: checked against a dense elimination.
+    #[test]
+    fn trailing_block_is_the_schur_complement() {
+        let (n, m) = (40, 5);
+        let a = saddle(n, m);
+        let total = n + m;
+        let k = 8; // the multipliers and three primal unknowns last
+        let lead = total - k;
+        let fwd: Vec<usize> = (0..total)
+            .filter(|&i| i != 10 && i != 20 && i != 30 && i < n)
+            .chain([10, 20, 30])
+            .chain(n..total)
+            .collect();
+        let mut f = OrderedLdlt::new(&a, fwd.clone()).unwrap();
+        f.factor_with(&a, |p, _, _| a.values[p]).unwrap();
+        let (l, d) = f.trailing_block(k);
+        // dense P A Pᵀ and its Schur complement on the last k unknowns
+        let mut dense = Mat::<f64>::zeros(total, total);
+        for c in 0..total {
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let (i, j) = (
+                    fwd.iter().position(|&x| x == a.row_idx[p]).unwrap(),
+                    fwd.iter().position(|&x| x == c).unwrap(),
+                );
+                dense[(i, j)] = a.values[p];
+            }
+        }
+        let a11 = dense.submatrix(0, 0, lead, lead).to_owned();
+        let a12 = dense.submatrix(0, lead, lead, k).to_owned();
+        let a21 = dense.submatrix(lead, 0, k, lead).to_owned();
+        let a22 = dense.submatrix(lead, lead, k, k).to_owned();
+        let lu = a11.partial_piv_lu();
+        let x = faer::linalg::solvers::Solve::solve(&lu, &a12);
+        let schur = &a22 - &a21 * &x;
+        let mut ld = l.clone();
+        for (j, &dj) in d.iter().enumerate() {
+            for i in 0..k {
+                ld[(i, j)] *= dj;
+            }
+        }
+        let from_factor = &ld * l.transpose();
+        let mut err = 0.0f64;
+        for i in 0..k {
+            for j in 0..k {
+                err = err.max((from_factor[(i, j)] - schur[(i, j)]).abs());
+            }
+        }
+        assert!(err < 1e-12, "Schur complement error {err}");
     }
 }

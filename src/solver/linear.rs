@@ -4,12 +4,50 @@
 //! pattern is unchanged (compared with a copy of the last pattern).
 
 use super::gmres;
+use super::interface::InterfaceSolver;
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, Lu, SymbolicLlt, SymbolicLu};
 use faer::Side;
+
+/// The factorisation behind the saddle-point solves: the exact one condensed on the
+/// contact interface when the interface is small, else the LDLᵀ of a symmetric
+/// approximation (GMRES makes either exact).
+enum Factorisation {
+    Interface(Box<InterfaceSolver>),
+    Saddle(Box<SaddleLdlt>),
+}
+
+impl Factorisation {
+    fn new(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Result<Self> {
+        Ok(match InterfaceSolver::new(a, np, transpose)? {
+            Some(s) => Factorisation::Interface(Box::new(s)),
+            None => Factorisation::Saddle(Box::new(SaddleLdlt::new(a, np)?)),
+        })
+    }
+    fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
+        match self {
+            Factorisation::Interface(s) => s.factor(a),
+            Factorisation::Saddle(s) => s.factor(a, transpose),
+        }
+    }
+    /// GMRES iterations allowed when it preconditions a later matrix: about the cost of
+    /// one factorisation (an interface solve costs about a quarter of its factorisation).
+    fn reuse_budget(&self) -> usize {
+        match self {
+            Factorisation::Interface(_) => 3,
+            Factorisation::Saddle(_) => REUSE_ITERATIONS,
+        }
+    }
+    fn solve(&mut self, b: &mut [f64]) {
+        match self {
+            Factorisation::Interface(s) => s.solve(b),
+            Factorisation::Saddle(s) => s.solve(b),
+        }
+    }
+}
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
@@ -25,7 +63,7 @@ pub struct LinearSolver {
     pattern: Option<(Vec<usize>, Vec<usize>)>,
     /// For `SaddleLdlt`: number of leading primal (displacement) unknowns.
     pub n_primal: usize,
-    ldlt: Option<SaddleLdlt>,
+    ldlt: Option<Factorisation>,
     sym_llt: Option<SymbolicLlt<usize>>,
     sym_lu: Option<SymbolicLu<usize>>,
     llt: Option<Llt<usize, f64>>,
@@ -132,7 +170,7 @@ impl LinearSolver {
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    self.ldlt = Some(SaddleLdlt::new(a, self.n_primal)?);
+                    self.ldlt = Some(Factorisation::new(a, self.n_primal, &self.transpose)?);
                     self.symbolic_count += 1;
                 }
                 if !fresh && self.exact.nnz() == a.nnz() {
@@ -212,7 +250,7 @@ impl LinearSolver {
     }
 }
 
-/// GMRES iterations allowed with a reused factorisation (about the cost of one
+/// GMRES iterations allowed with a reused saddle-point LDLᵀ (about the cost of one
 /// factorisation on the SSNP154 meshes).
 const REUSE_ITERATIONS: usize = 8;
 
@@ -229,8 +267,8 @@ impl LinearSolver {
             // iterations when the tangent changed little (small steps, few status changes).
             // A fixed budget (not a timed one) keeps the results reproducible bit for bit;
             // past half of it the next matrix is factorised.
-            let budget = REUSE_ITERATIONS;
             let f = self.ldlt.as_mut().expect("factor before solve");
+            let budget = f.reuse_budget();
             let exact = &self.exact;
             f.solve(b);
             let reused = gmres::solve(

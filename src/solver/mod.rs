@@ -3,6 +3,7 @@
 //! | file | what |
 //! |---|---|
 //! | `gmres.rs` | right-preconditioned GMRES (non-symmetric tangents on the LDLᵀ of their symmetric part) |
+//! | `interface.rs` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
 //! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
 //! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
@@ -11,6 +12,7 @@
 
 pub mod gmres;
 pub mod history;
+pub mod interface;
 pub mod ldlt;
 pub mod linear;
 pub mod newton;

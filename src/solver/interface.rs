@@ -1,0 +1,423 @@
+//! Direct solve of a contact tangent by condensation on its interface. The unknowns Γ
+//! that carry contact terms (every multiplier, every displacement coupled to one) are
+//! set apart; removing them splits the displacements into blocks with no coupling
+//! between them (the bodies, which touch only through the contact), each symmetric
+//! positive definite. Each block is factorised on its own (both in parallel, LDLᵀ with
+//! its interface unknowns ordered last), its Schur complement onto the interface is read
+//! off the trailing block of the factor, and the interface system, with every contact
+//! term exact (non-symmetric with friction, saddle point), is solved by dense LU with
+//! partial pivoting. The result is the exact solution of the tangent system: no GMRES on
+//! a symmetric approximation, and the two cores share the factorisation.
+//!
+//! Per block, with Γ_b its interface unknowns and σ < 0 a shift on their diagonal:
+//!   M_b = [A_II A_IΓ; A_ΓI σI] = L D Lᵀ,  S'_b = σI − A_ΓI A_II⁻¹ A_IΓ (trailing L D Lᵀ)
+//!   T = A_ΓΓ + Σ_b (S'_b − σI)                          (the interface matrix, dense)
+//!   v = M_b⁻¹ [b_I; 0]  ⇒  A_ΓI A_II⁻¹ b_I = −S'_b v_Γ
+//!   T x_Γ = b_Γ + Σ_b S'_b v_Γ,   then [x_I; x_Γ] = M_b⁻¹ [b_I; S'_b (x_Γ − v_Γ)].
+
+use super::ldlt::{leading_order, OrderedLdlt};
+use crate::assembly::matrix::SparseMatrix;
+use crate::error::{Error, Result};
+use faer::linalg::solvers::{PartialPivLu, Solve};
+use faer::Mat;
+use rayon::prelude::*;
+
+/// Larger interfaces go to the saddle-point LDLᵀ (the dense LU grows as k³).
+const MAX_INTERFACE: usize = 1500;
+
+const NONE: usize = usize::MAX;
+
+/// One block of displacements with the interface unknowns it couples to.
+struct Block {
+    /// Global unknowns of the block's matrix: its interior, then its interface unknowns.
+    unknowns: Vec<usize>,
+    /// Number of interior unknowns (the interface ones follow).
+    interior: usize,
+    /// Position in the interface of each of the block's interface unknowns.
+    gamma: Vec<usize>,
+    /// The block's matrix pattern (local numbering) and, per entry, its position in A
+    /// (NONE: the shifted diagonal of an interface unknown).
+    local: SparseMatrix,
+    source: Vec<usize>,
+    ldlt: OrderedLdlt,
+    shift: f64,
+    /// S'_b of the last factorisation.
+    schur: Mat<f64>,
+}
+
+pub struct InterfaceSolver {
+    n: usize,
+    /// Global index of each interface unknown.
+    gamma: Vec<usize>,
+    blocks: Vec<Block>,
+    /// Entries of A inside Γ × Γ: (position in A, interface row, interface column).
+    gamma_entries: Vec<(usize, usize, usize)>,
+    lu: Option<PartialPivLu<f64>>,
+}
+
+/// The interface of `a` (first `np` unknowns primal): the multipliers and the primal
+/// unknowns that share an entry with one, or whose entries are not symmetric.
+fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Vec<bool> {
+    let mut gamma = vec![false; a.n];
+    for c in 0..a.n {
+        for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+            let r = a.row_idx[p];
+            let asymmetric = a.values[transpose[p]] != a.values[p];
+            if r >= np || c >= np || asymmetric {
+                gamma[r] = true;
+                gamma[c] = true;
+            }
+        }
+    }
+    gamma
+}
+
+impl InterfaceSolver {
+    /// Analyses `a` (structurally symmetric; `transpose[p]` the position of the transpose
+    /// of entry p). None when the interface is too large for a dense solve or does not
+    /// split the displacements from the multipliers.
+    pub fn new(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Result<Option<Self>> {
+        let n = a.n;
+        let in_gamma = interface_of(a, np, transpose);
+        let gamma: Vec<usize> = (0..n).filter(|&i| in_gamma[i]).collect();
+        if gamma.is_empty() || gamma.len() > MAX_INTERFACE || 4 * gamma.len() > n {
+            return Ok(None);
+        }
+        let mut gamma_pos = vec![NONE; n];
+        for (k, &g) in gamma.iter().enumerate() {
+            gamma_pos[g] = k;
+        }
+        // Connected components of the interior, then packed into two blocks of about
+        // equal size (two cores).
+        let mut component = vec![NONE; n];
+        let mut sizes = vec![];
+        for s in 0..n {
+            if in_gamma[s] || component[s] != NONE {
+                continue;
+            }
+            let id = sizes.len();
+            component[s] = id;
+            let mut stack = vec![s];
+            let mut size = 0;
+            while let Some(v) = stack.pop() {
+                size += 1;
+                for &r in &a.row_idx[a.col_ptr[v]..a.col_ptr[v + 1]] {
+                    if !in_gamma[r] && component[r] == NONE {
+                        component[r] = id;
+                        stack.push(r);
+                    }
+                }
+            }
+            sizes.push(size);
+        }
+        let mut by_size: Vec<usize> = (0..sizes.len()).collect();
+        by_size.sort_by_key(|&c| std::cmp::Reverse(sizes[c]));
+        let mut bin_of = vec![0usize; sizes.len()];
+        let mut load = [0usize; 2];
+        for c in by_size {
+            let bin = if load[0] <= load[1] { 0 } else { 1 };
+            bin_of[c] = bin;
+            load[bin] += sizes[c];
+        }
+        let mut blocks = vec![];
+        for bin in 0..2 {
+            if load[bin] == 0 {
+                continue;
+            }
+            let mut unknowns: Vec<usize> = (0..n)
+                .filter(|&i| component[i] != NONE && bin_of[component[i]] == bin)
+                .collect();
+            let interior = unknowns.len();
+            let mut touched = vec![false; gamma.len()];
+            for &i in &unknowns {
+                for &r in &a.row_idx[a.col_ptr[i]..a.col_ptr[i + 1]] {
+                    if in_gamma[r] {
+                        touched[gamma_pos[r]] = true;
+                    }
+                }
+            }
+            let block_gamma: Vec<usize> = (0..gamma.len()).filter(|&k| touched[k]).collect();
+            unknowns.extend(block_gamma.iter().map(|&k| gamma[k]));
+            blocks.push(Block::new(a, unknowns, interior, block_gamma, &in_gamma)?);
+        }
+        let mut gamma_entries = vec![];
+        for (jc, &c) in gamma.iter().enumerate() {
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let r = a.row_idx[p];
+                if in_gamma[r] {
+                    gamma_entries.push((p, gamma_pos[r], jc));
+                }
+            }
+        }
+        Ok(Some(InterfaceSolver {
+            n,
+            gamma,
+            blocks,
+            gamma_entries,
+            lu: None,
+        }))
+    }
+
+    /// Factorises the blocks (in parallel) and the interface matrix of `a` (the pattern
+    /// given to `new`).
+    pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+        self.blocks
+            .par_iter_mut()
+            .map(|b| b.factor(a))
+            .collect::<Result<Vec<()>>>()?;
+        let k = self.gamma.len();
+        let mut t = Mat::<f64>::zeros(k, k);
+        for &(p, i, j) in &self.gamma_entries {
+            t[(i, j)] += a.values[p];
+        }
+        for b in &self.blocks {
+            for (li, &gi) in b.gamma.iter().enumerate() {
+                for (lj, &gj) in b.gamma.iter().enumerate() {
+                    t[(gi, gj)] += b.schur[(li, lj)];
+                }
+                t[(gi, gi)] -= b.shift;
+            }
+        }
+        if t.col_iter().any(|c| c.iter().any(|v| !v.is_finite())) {
+            return Err(Error::solve(
+                "the system matrix is singular: non-finite interface matrix",
+            ));
+        }
+        self.lu = Some(t.partial_piv_lu());
+        Ok(())
+    }
+
+    /// Solves with the last factorisation, in place.
+    pub fn solve(&mut self, b: &mut [f64]) {
+        debug_assert_eq!(b.len(), self.n);
+        let rhs: &[f64] = b;
+        // first block solves with the interface rows at zero
+        let first: Vec<Vec<f64>> = self
+            .blocks
+            .par_iter_mut()
+            .map(|blk| {
+                let mut v: Vec<f64> = blk.unknowns.iter().map(|&i| rhs[i]).collect();
+                v[blk.interior..].fill(0.0);
+                blk.ldlt.solve(&mut v);
+                v
+            })
+            .collect();
+        let k = self.gamma.len();
+        let mut xg = Mat::<f64>::zeros(k, 1);
+        for (kk, &g) in self.gamma.iter().enumerate() {
+            xg[(kk, 0)] = rhs[g];
+        }
+        for (blk, v) in self.blocks.iter().zip(&first) {
+            let vg = &v[blk.interior..];
+            for (li, &gi) in blk.gamma.iter().enumerate() {
+                let mut s = 0.0;
+                for (lj, &vj) in vg.iter().enumerate() {
+                    s += blk.schur[(li, lj)] * vj;
+                }
+                xg[(gi, 0)] += s;
+            }
+        }
+        self.lu
+            .as_ref()
+            .expect("factor before solve")
+            .solve_in_place(xg.as_mut());
+        // second block solves: interface rows set so that their solution is x_Γ
+        let second: Vec<Vec<f64>> = self
+            .blocks
+            .par_iter_mut()
+            .zip(first)
+            .map(|(blk, v)| {
+                let mut w: Vec<f64> = blk.unknowns.iter().map(|&i| rhs[i]).collect();
+                let m = blk.interior;
+                for (li, _) in blk.gamma.iter().enumerate() {
+                    let mut s = 0.0;
+                    for (lj, &gj) in blk.gamma.iter().enumerate() {
+                        s += blk.schur[(li, lj)] * (xg[(gj, 0)] - v[m + lj]);
+                    }
+                    w[m + li] = s;
+                }
+                blk.ldlt.solve(&mut w);
+                w
+            })
+            .collect();
+        for (blk, w) in self.blocks.iter().zip(&second) {
+            for (&i, &x) in blk.unknowns[..blk.interior].iter().zip(w) {
+                b[i] = x;
+            }
+        }
+        for (kk, &g) in self.gamma.iter().enumerate() {
+            b[g] = xg[(kk, 0)];
+        }
+    }
+}
+
+impl Block {
+    fn new(
+        a: &SparseMatrix,
+        unknowns: Vec<usize>,
+        interior: usize,
+        gamma: Vec<usize>,
+        in_gamma: &[bool],
+    ) -> Result<Block> {
+        let m = unknowns.len();
+        let mut local_of = vec![NONE; a.n];
+        for (l, &g) in unknowns.iter().enumerate() {
+            local_of[g] = l;
+        }
+        // entries of A in the block (not between two interface unknowns), plus the
+        // interface diagonal
+        let mut source = vec![];
+        let columns: Vec<Vec<(usize, usize)>> = unknowns
+            .iter()
+            .enumerate()
+            .map(|(lc, &c)| {
+                let mut col: Vec<(usize, usize)> = vec![];
+                for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                    let r = a.row_idx[p];
+                    let lr = local_of[r];
+                    if lr != NONE && !(in_gamma[r] && in_gamma[c]) {
+                        col.push((lr, p));
+                    }
+                }
+                if lc >= interior {
+                    col.push((lc, NONE));
+                }
+                col.sort_unstable();
+                col
+            })
+            .collect();
+        let local = SparseMatrix::from_columns(
+            m,
+            columns.into_iter().map(|col| {
+                source.extend(col.iter().map(|e| e.1));
+                col.into_iter().map(|e| e.0).collect()
+            }),
+        );
+        let mut fwd = leading_order(&local, interior)?;
+        fwd.extend(interior..m);
+        let ldlt = OrderedLdlt::new(&local, fwd)?;
+        let k = m - interior;
+        Ok(Block {
+            unknowns,
+            interior,
+            gamma,
+            local,
+            source,
+            ldlt,
+            shift: -1.0,
+            schur: Mat::zeros(k, k),
+        })
+    }
+
+    fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+        // σ of the size of the block's largest diagonal entry: the trailing pivots are
+        // then σ − (a positive semi-definite term), negative and well scaled.
+        let diag = self.unknowns[..self.interior]
+            .iter()
+            .filter_map(|&i| a.position(i, i).map(|p| a.values[p].abs()))
+            .fold(0.0f64, f64::max);
+        self.shift = -diag.max(f64::MIN_POSITIVE);
+        let (source, shift) = (&self.source, self.shift);
+        self.ldlt.factor_with(&self.local, |p, _, _| {
+            if source[p] == NONE {
+                shift
+            } else {
+                a.values[source[p]]
+            }
+        })?;
+        let k = self.unknowns.len() - self.interior;
+        let (l, d) = self.ldlt.trailing_block(k);
+        let mut ld = l.clone();
+        for (j, &dj) in d.iter().enumerate() {
+            for i in 0..k {
+                ld[(i, j)] *= dj;
+            }
+        }
+        self.schur = &ld * l.transpose();
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::linear::transpose_positions;
+
+    /// Two chains of springs (bodies) of `len` unknowns each; the second is held only
+    /// through two multipliers tying its first unknowns to the first chain's last ones,
+    /// with a non-symmetric friction-like term between the tied unknowns.
+    fn two_bodies(len: usize) -> SparseMatrix {
+        let mut e: Vec<(usize, usize, f64)> = vec![];
+        for body in 0..2 {
+            let o = body * len;
+            for i in 0..len {
+                let support = if body == 0 && i == 0 { 1.0 } else { 0.0 };
+                let ends = if i == 0 || i + 1 == len { 1.0 } else { 2.0 };
+                e.push((o + i, o + i, ends + support + 0.01 * i as f64));
+                if i + 1 < len {
+                    e.push((o + i, o + i + 1, -1.0));
+                    e.push((o + i + 1, o + i, -1.0));
+                }
+            }
+        }
+        let m = 2 * len;
+        for k in 0..2 {
+            let (a, b) = (len - 1 - k, len + k); // tied pair
+            e.push((m + k, a, 1.0));
+            e.push((a, m + k, 1.0));
+            e.push((m + k, b, -1.0));
+            e.push((b, m + k, -1.0));
+            e.push((m + k, m + k, 0.0));
+            e.push((a, b, 0.3)); // non-symmetric coupling
+            e.push((b, a, -0.2));
+        }
+        let n = m + 2;
+        let cols = (0..n).map(|c| {
+            let mut rows: Vec<usize> = e.iter().filter(|t| t.1 == c).map(|t| t.0).collect();
+            rows.sort_unstable();
+            rows.dedup();
+            rows
+        });
+        let mut a = SparseMatrix::from_columns(n, cols);
+        for &(r, c, v) in &e {
+            let q = a.position(r, c).unwrap();
+            a.values[q] += v;
+        }
+        a
+    }
+
+    #[test]
+    fn interface_solve_is_exact_on_a_nonsymmetric_saddle_point_system() {
+        let len = 30;
+        let a = two_bodies(len);
+        let t = transpose_positions(&a);
+        let mut s = InterfaceSolver::new(&a, 2 * len, &t)
+            .unwrap()
+            .expect("small interface");
+        assert_eq!(s.blocks.len(), 2, "the chains are two blocks");
+        assert_eq!(
+            s.gamma.len(),
+            4 + 2,
+            "four tied unknowns and two multipliers"
+        );
+        s.factor(&a).unwrap();
+        let x: Vec<f64> = (0..a.n).map(|i| (0.37 * i as f64).sin() + 0.5).collect();
+        let mut b = vec![0.0; a.n];
+        a.mul_vec(&x, &mut b);
+        s.solve(&mut b);
+        let err = b
+            .iter()
+            .zip(&x)
+            .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+        assert!(err < 1e-12, "max error {err}");
+    }
+
+    #[test]
+    fn too_large_an_interface_is_declined() {
+        // every unknown coupled to a multiplier: nothing to condense
+        let len = 3;
+        let a = two_bodies(len);
+        let t = transpose_positions(&a);
+        assert!(InterfaceSolver::new(&a, 2 * len, &t).unwrap().is_none());
+    }
+}
