@@ -12,8 +12,9 @@
 //! Per block, with Γ_b its interface unknowns and σ < 0 a shift on their diagonal:
 //!   M_b = [A_II A_IΓ; A_ΓI σI] = L D Lᵀ,  S'_b = σI − A_ΓI A_II⁻¹ A_IΓ (trailing L D Lᵀ)
 //!   T = A_ΓΓ + Σ_b (S'_b − σI)                          (the interface matrix, dense)
-//!   v = M_b⁻¹ [b_I; 0]  ⇒  A_ΓI A_II⁻¹ b_I = −S'_b v_Γ
-//!   T x_Γ = b_Γ + Σ_b S'_b v_Γ,   then [x_I; x_Γ] = M_b⁻¹ [b_I; S'_b (x_Γ − v_Γ)].
+//!   z = L⁻¹ [b_I; 0]  ⇒  A_ΓI A_II⁻¹ b_I = −L_ΓΓ z_Γ
+//!   T x_Γ = b_Γ + Σ_b L_ΓΓ z_Γ,   then [x_I; x_Γ] = L⁻ᵀ [D_I⁻¹ z_I; L_ΓΓᵀ x_Γ]
+//! (one forward and one backward pass per block, the cost of one solve).
 
 use super::ldlt::{leading_order, OrderedLdlt};
 use crate::assembly::matrix::SparseMatrix;
@@ -41,7 +42,10 @@ struct Block {
     source: Vec<usize>,
     ldlt: OrderedLdlt,
     shift: f64,
-    /// S'_b of the last factorisation.
+    /// Of the last factorisation: the pivots of the interior (in the factorised order),
+    /// the trailing unit lower triangle L_ΓΓ, and S'_b − σI = L_ΓΓ D_Γ L_ΓΓᵀ − σI.
+    pivots: Vec<f64>,
+    lgg: Mat<f64>,
     schur: Mat<f64>,
 }
 
@@ -119,7 +123,7 @@ impl InterfaceSolver {
             bin_of[c] = bin;
             load[bin] += sizes[c];
         }
-        let mut blocks = vec![];
+        let mut parts = vec![];
         for bin in 0..2 {
             if load[bin] == 0 {
                 continue;
@@ -138,8 +142,15 @@ impl InterfaceSolver {
             }
             let block_gamma: Vec<usize> = (0..gamma.len()).filter(|&k| touched[k]).collect();
             unknowns.extend(block_gamma.iter().map(|&k| gamma[k]));
-            blocks.push(Block::new(a, unknowns, interior, block_gamma, &in_gamma)?);
+            parts.push((unknowns, interior, block_gamma));
         }
+        // the blocks' orderings and analyses, in parallel
+        let blocks = parts
+            .into_par_iter()
+            .map(|(unknowns, interior, block_gamma)| {
+                Block::new(a, unknowns, interior, block_gamma, &in_gamma)
+            })
+            .collect::<Result<Vec<Block>>>()?;
         let mut gamma_entries = vec![];
         for (jc, &c) in gamma.iter().enumerate() {
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
@@ -175,7 +186,6 @@ impl InterfaceSolver {
                 for (lj, &gj) in b.gamma.iter().enumerate() {
                     t[(gi, gj)] += b.schur[(li, lj)];
                 }
-                t[(gi, gi)] -= b.shift;
             }
         }
         if t.col_iter().any(|c| c.iter().any(|v| !v.is_finite())) {
@@ -187,19 +197,24 @@ impl InterfaceSolver {
         Ok(())
     }
 
-    /// Solves with the last factorisation, in place.
+    /// Solves with the last factorisation, in place: per block one forward pass (the
+    /// interface rows at zero), the interface system, one backward pass.
     pub fn solve(&mut self, b: &mut [f64]) {
         debug_assert_eq!(b.len(), self.n);
         let rhs: &[f64] = b;
-        // first block solves with the interface rows at zero
-        let first: Vec<Vec<f64>> = self
+        // z = L⁻¹ [b_I; 0]; then A_ΓI A_II⁻¹ b_I = −S'_b v_Γ = −L_ΓΓ z_Γ
+        let forward: Vec<Vec<f64>> = self
             .blocks
-            .par_iter_mut()
+            .par_iter()
             .map(|blk| {
-                let mut v: Vec<f64> = blk.unknowns.iter().map(|&i| rhs[i]).collect();
-                v[blk.interior..].fill(0.0);
-                blk.ldlt.solve(&mut v);
-                v
+                let order = blk.ldlt.order();
+                let mut z: Vec<f64> = order[..blk.interior]
+                    .iter()
+                    .map(|&l| rhs[blk.unknowns[l]])
+                    .collect();
+                z.resize(order.len(), 0.0);
+                blk.ldlt.forward(&mut z);
+                z
             })
             .collect();
         let k = self.gamma.len();
@@ -207,12 +222,12 @@ impl InterfaceSolver {
         for (kk, &g) in self.gamma.iter().enumerate() {
             xg[(kk, 0)] = rhs[g];
         }
-        for (blk, v) in self.blocks.iter().zip(&first) {
-            let vg = &v[blk.interior..];
+        for (blk, z) in self.blocks.iter().zip(&forward) {
+            let zg = &z[blk.interior..];
             for (li, &gi) in blk.gamma.iter().enumerate() {
-                let mut s = 0.0;
-                for (lj, &vj) in vg.iter().enumerate() {
-                    s += blk.schur[(li, lj)] * vj;
+                let mut s = zg[li];
+                for (lj, &zj) in zg[..li].iter().enumerate() {
+                    s += blk.lgg[(li, lj)] * zj;
                 }
                 xg[(gi, 0)] += s;
             }
@@ -221,28 +236,32 @@ impl InterfaceSolver {
             .as_ref()
             .expect("factor before solve")
             .solve_in_place(xg.as_mut());
-        // second block solves: interface rows set so that their solution is x_Γ
-        let second: Vec<Vec<f64>> = self
+        // backward pass from [D_I⁻¹ z_I; L_ΓΓᵀ x_Γ]: its interface part is x_Γ, its
+        // interior part A_II⁻¹ (b_I − A_IΓ x_Γ)
+        let xg = &xg;
+        let backward: Vec<Vec<f64>> = self
             .blocks
-            .par_iter_mut()
-            .zip(first)
-            .map(|(blk, v)| {
-                let mut w: Vec<f64> = blk.unknowns.iter().map(|&i| rhs[i]).collect();
+            .par_iter()
+            .zip(forward)
+            .map(|(blk, mut w)| {
                 let m = blk.interior;
-                for (li, _) in blk.gamma.iter().enumerate() {
-                    let mut s = 0.0;
-                    for (lj, &gj) in blk.gamma.iter().enumerate() {
-                        s += blk.schur[(li, lj)] * (xg[(gj, 0)] - v[m + lj]);
+                for (v, d) in w[..m].iter_mut().zip(&blk.pivots) {
+                    *v /= d;
+                }
+                for li in 0..blk.gamma.len() {
+                    let mut s = xg[(blk.gamma[li], 0)];
+                    for lj in li + 1..blk.gamma.len() {
+                        s += blk.lgg[(lj, li)] * xg[(blk.gamma[lj], 0)];
                     }
                     w[m + li] = s;
                 }
-                blk.ldlt.solve(&mut w);
+                blk.ldlt.backward(&mut w);
                 w
             })
             .collect();
-        for (blk, w) in self.blocks.iter().zip(&second) {
-            for (&i, &x) in blk.unknowns[..blk.interior].iter().zip(w) {
-                b[i] = x;
+        for (blk, w) in self.blocks.iter().zip(&backward) {
+            for (&l, &x) in blk.ldlt.order()[..blk.interior].iter().zip(w) {
+                b[blk.unknowns[l]] = x;
             }
         }
         for (kk, &g) in self.gamma.iter().enumerate() {
@@ -305,6 +324,8 @@ impl Block {
             source,
             ldlt,
             shift: -1.0,
+            pivots: vec![],
+            lgg: Mat::zeros(k, k),
             schur: Mat::zeros(k, k),
         })
     }
@@ -334,6 +355,13 @@ impl Block {
             }
         }
         self.schur = &ld * l.transpose();
+        for i in 0..k {
+            self.schur[(i, i)] -= self.shift;
+        }
+        self.lgg = l;
+        let mut pivots = self.ldlt.pivots();
+        pivots.truncate(self.interior);
+        self.pivots = pivots;
         Ok(())
     }
 }
