@@ -185,6 +185,8 @@ pub fn solve(
     // the last converged step: (its load-factor increment, its change of the unknowns)
     let mut last_step: Option<(f64, Vec<f64>)> = None;
     let mut extrapolation_won = false;
+    // Newton iterations of the last converged step
+    let mut last_iterations = usize::MAX;
     while next < ends.len() {
         let start = if next == 0 { 0.0 } else { ends[next - 1] };
         let dl = (ends[next] - start) / 2f64.powi(level as i32);
@@ -319,9 +321,11 @@ pub fn solve(
             }
             let t = std::time::Instant::now();
             // An earlier factorisation may precondition the first solve of a step (the
-            // tangent barely moved since the last converged state); later iterations of a
-            // step change it more than GMRES recovers cheaply (SSNP154 F: 20 % slower).
-            lin.reuse_factor = settings.reuse_factor && it == 0;
+            // tangent barely moved since the last converged state: small steps, which
+            // converge in a few iterations); later iterations of a step, or steps after one
+            // that needed many, change it more than GMRES recovers cheaply (SSNP154 F: 20 %
+            // slower; B and D lost a factorisation's time on the failed attempt).
+            lin.reuse_factor = settings.reuse_factor && it == 0 && last_iterations <= 3;
             if let Err(e) = lin.factor(problem.matrix()) {
                 failure = Some(e.to_string());
                 break;
@@ -367,6 +371,7 @@ pub fn solve(
         let converged = step.converged;
         report.steps.push(step);
         if converged {
+            last_iterations = report.steps.last().map_or(usize::MAX, |s| s.iterations.len() - 1);
             last_step = Some((
                 lambda - lambda_done,
                 x.iter().zip(&x_start).map(|(a, b)| a - b).collect(),
