@@ -56,7 +56,11 @@ pub struct InterfaceSolver {
     blocks: Vec<Block>,
     /// Entries of A inside Γ × Γ: (position in A, interface row, interface column).
     gamma_entries: Vec<(usize, usize, usize)>,
+    /// LU of the interface matrix restricted to `kept`; the `decoupled` unknowns (with
+    /// their diagonal) are solved alone.
     lu: Option<PartialPivLu<f64>>,
+    kept: Vec<usize>,
+    decoupled: Vec<(usize, f64)>,
 }
 
 /// The interface of `a` (first `np` unknowns primal): the multipliers and the primal
@@ -166,6 +170,8 @@ impl InterfaceSolver {
             blocks,
             gamma_entries,
             lu: None,
+            kept: vec![],
+            decoupled: vec![],
         }))
     }
 
@@ -188,12 +194,36 @@ impl InterfaceSolver {
                 }
             }
         }
-        if t.col_iter().any(|c| c.iter().any(|v| !v.is_finite())) {
-            return Err(Error::solve(
-                "the system matrix is singular: non-finite interface matrix",
-            ));
+        // Unknowns decoupled from the rest of the interface (the multipliers of open
+        // contact points: row and column hold only the diagonal) are solved on their own;
+        // the dense LU, k³, gets the others only.
+        let mut coupled = vec![false; k];
+        for j in 0..k {
+            for i in 0..k {
+                let v = t[(i, j)];
+                if !v.is_finite() {
+                    return Err(Error::solve(
+                        "the system matrix is singular: non-finite interface matrix",
+                    ));
+                }
+                if i != j && v != 0.0 {
+                    coupled[i] = true;
+                    coupled[j] = true;
+                }
+            }
         }
-        self.lu = Some(t.partial_piv_lu());
+        self.decoupled.clear();
+        self.kept.clear();
+        for i in 0..k {
+            if !coupled[i] && t[(i, i)] != 0.0 {
+                self.decoupled.push((i, t[(i, i)]));
+            } else {
+                self.kept.push(i);
+            }
+        }
+        let kept = &self.kept;
+        let reduced = Mat::<f64>::from_fn(kept.len(), kept.len(), |i, j| t[(kept[i], kept[j])]);
+        self.lu = Some(reduced.partial_piv_lu());
         Ok(())
     }
 
@@ -232,10 +262,17 @@ impl InterfaceSolver {
                 xg[(gi, 0)] += s;
             }
         }
+        let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| xg[(self.kept[i], 0)]);
         self.lu
             .as_ref()
             .expect("factor before solve")
-            .solve_in_place(xg.as_mut());
+            .solve_in_place(xr.as_mut());
+        for (i, &g) in self.kept.iter().enumerate() {
+            xg[(g, 0)] = xr[(i, 0)];
+        }
+        for &(g, d) in &self.decoupled {
+            xg[(g, 0)] /= d;
+        }
         // backward pass from [D_I⁻¹ z_I; L_ΓΓᵀ x_Γ]: its interface part is x_Γ, its
         // interior part A_II⁻¹ (b_I − A_IΓ x_Γ)
         let xg = &xg;
@@ -373,7 +410,8 @@ mod tests {
 
     /// Two chains of springs (bodies) of `len` unknowns each; the second is held only
     /// through two multipliers tying its first unknowns to the first chain's last ones,
-    /// with a non-symmetric friction-like term between the tied unknowns.
+    /// with a non-symmetric friction-like term between the tied unknowns; a third
+    /// multiplier is decoupled (an open point).
     fn two_bodies(len: usize) -> SparseMatrix {
         let mut e: Vec<(usize, usize, f64)> = vec![];
         for body in 0..2 {
@@ -399,7 +437,8 @@ mod tests {
             e.push((a, b, 0.3)); // non-symmetric coupling
             e.push((b, a, -0.2));
         }
-        let n = m + 2;
+        e.push((m + 2, m + 2, 2.0)); // an open contact point: decoupled multiplier
+        let n = m + 3;
         let cols = (0..n).map(|c| {
             let mut rows: Vec<usize> = e.iter().filter(|t| t.1 == c).map(|t| t.0).collect();
             rows.sort_unstable();
@@ -425,10 +464,15 @@ mod tests {
         assert_eq!(s.blocks.len(), 2, "the chains are two blocks");
         assert_eq!(
             s.gamma.len(),
-            4 + 2,
-            "four tied unknowns and two multipliers"
+            4 + 3,
+            "four tied unknowns and three multipliers"
         );
         s.factor(&a).unwrap();
+        assert_eq!(
+            s.decoupled.len(),
+            1,
+            "the open point's multiplier is solved alone"
+        );
         let x: Vec<f64> = (0..a.n).map(|i| (0.37 * i as f64).sin() + 0.5).collect();
         let mut b = vec![0.0; a.n];
         a.mul_vec(&x, &mut b);

@@ -371,7 +371,10 @@ pub fn solve(
         let converged = step.converged;
         report.steps.push(step);
         if converged {
-            last_iterations = report.steps.last().map_or(usize::MAX, |s| s.iterations.len() - 1);
+            last_iterations = report
+                .steps
+                .last()
+                .map_or(usize::MAX, |s| s.iterations.len() - 1);
             last_step = Some((
                 lambda - lambda_done,
                 x.iter().zip(&x_start).map(|(a, b)| a - b).collect(),
