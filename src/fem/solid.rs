@@ -156,10 +156,27 @@ pub fn residual_tangent(
     u: &[[f64; 2]],
     sm: &SolidModel,
     fe: &mut [f64],
+    ke: Option<&mut [f64]>,
+) -> Result<(), BadJacobian> {
+    // The node count as a constant: the loops below unroll and vectorise.
+    match kind.num_nodes() {
+        3 => kernel::<3>(kind, x, u, sm, fe, ke),
+        4 => kernel::<4>(kind, x, u, sm, fe, ke),
+        6 => kernel::<6>(kind, x, u, sm, fe, ke),
+        8 => kernel::<8>(kind, x, u, sm, fe, ke),
+        n => unreachable!("no solid cell has {n} nodes"),
+    }
+}
+
+fn kernel<const NN: usize>(
+    kind: CellKind,
+    x: &[[f64; 2]],
+    u: &[[f64; 2]],
+    sm: &SolidModel,
+    fe: &mut [f64],
     mut ke: Option<&mut [f64]>,
 ) -> Result<(), BadJacobian> {
-    let nn = kind.num_nodes();
-    let nd = 2 * nn;
+    let nd = 2 * NN;
     fe[..nd].fill(0.0);
     if let Some(k) = ke.as_deref_mut() {
         k[..nd * nd].fill(0.0);
@@ -168,75 +185,84 @@ pub fn residual_tangent(
     let axi = sm.model == Modelisation::Axisymmetric;
     let large = sm.kinematics == Kinematics::Large;
     let rule = stiffness_rule(kind);
+    // The material part Bᵀ D B over Voigt rows [xx, yy, zz, xy]; the hoop row (zz) is zero
+    // outside axisymmetry and skipped.
+    let rows: &[usize] = if axi { &[0, 1, 2, 3] } else { &[0, 1, 3] };
     for (q, &xi) in rule.points.iter().enumerate() {
         let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(BadJacobian)?;
-        let (f, fzz, e) = strain_at(&g, nn, u, sm);
+        let (f, fzz, e) = strain_at(&g, NN, u, sm);
         let s = apply(&d, &e);
-        let mut b = [[[0.0; 2]; 4]; MAX_NODES];
-        for (a, ba) in b.iter_mut().enumerate().take(nn) {
-            *ba = b_rows(&g, a, &f, fzz, axi);
-        }
-        for a in 0..nn {
-            for i in 0..2 {
-                let mut acc = 0.0;
-                for v in 0..4 {
-                    acc += b[a][v][i] * s[v];
-                }
-                fe[2 * a + i] += acc * g.dv;
+        // B as 4 rows of nd columns
+        let mut bm = [[0.0; MAX_DOFS]; 4];
+        for a in 0..NN {
+            let ba = b_rows(&g, a, &f, fzz, axi);
+            for v in 0..4 {
+                bm[v][2 * a] = ba[v][0];
+                bm[v][2 * a + 1] = ba[v][1];
             }
+        }
+        // (the hoop row of B is zero outside axisymmetry: all four rows can be summed)
+        let sdv = [s[0] * g.dv, s[1] * g.dv, s[2] * g.dv, s[3] * g.dv];
+        for c in 0..nd {
+            fe[c] += bm[0][c] * sdv[0] + bm[1][c] * sdv[1] + bm[2][c] * sdv[2] + bm[3][c] * sdv[3];
         }
         let Some(k) = ke.as_deref_mut() else { continue };
-        // Material part Bᵀ D B, upper triangle only (mirrored after the loop): B as 4 × nd
-        // rows, D·B precomputed per column.
-        let mut bm = [[0.0; MAX_DOFS]; 4];
-        for a in 0..nn {
-            for v in 0..4 {
-                bm[v][2 * a] = b[a][v][0];
-                bm[v][2 * a + 1] = b[a][v][1];
-            }
-        }
+        // D·B scaled by the point's measure
         let mut dbm = [[0.0; MAX_DOFS]; 4];
-        for v in 0..4 {
-            for w in 0..4 {
-                if d[v][w] != 0.0 {
+        for &v in rows {
+            for &w in rows {
+                let dvw = d[v][w] * g.dv;
+                if dvw != 0.0 {
                     for c in 0..nd {
-                        dbm[v][c] += d[v][w] * bm[w][c];
+                        dbm[v][c] += dvw * bm[w][c];
                     }
                 }
             }
         }
-        for r in 0..nd {
-            let br = [
-                bm[0][r] * g.dv,
-                bm[1][r] * g.dv,
-                bm[2][r] * g.dv,
-                bm[3][r] * g.dv,
-            ];
-            let row = &mut k[r * nd..(r + 1) * nd];
-            for c in r..nd {
-                row[c] +=
-                    br[0] * dbm[0][c] + br[1] * dbm[1][c] + br[2] * dbm[2][c] + br[3] * dbm[3][c];
+        // Geometric stiffness ∇N_a · S · ∇N_b on both in-plane dofs (large kinematics),
+        // summed in the same pass: for row r = 2a + i, (S ∇N_a) · ∇N_b at the columns
+        // 2b + i, from ∇N spread over the columns of component i (`grad[i][p][c]`).
+        let mut grad = [[[0.0; MAX_DOFS]; 2]; 2];
+        let mut sgrad = [[0.0; 2]; MAX_NODES];
+        if large {
+            for a in 0..NN {
+                let (ax, ay) = (g.dn[a][0], g.dn[a][1]);
+                for i in 0..2 {
+                    grad[i][0][2 * a + i] = ax;
+                    grad[i][1][2 * a + i] = ay;
+                }
+                sgrad[a] = [
+                    (ax * s[0] + ay * s[3]) * g.dv,
+                    (ax * s[3] + ay * s[1]) * g.dv,
+                ];
             }
         }
-        if large {
-            // Geometric stiffness: ∇N_a · S · ∇N_b on both in-plane dofs (+ hoop term),
-            // upper triangle (b ≥ a) only.
-            for a in 0..nn {
-                for bn in a..nn {
-                    let (ax, ay) = (g.dn[a][0], g.dn[a][1]);
-                    let (bx, by) = (g.dn[bn][0], g.dn[bn][1]);
-                    let kab = (ax * bx * s[0] + ay * by * s[1] + (ax * by + ay * bx) * s[3]) * g.dv;
-                    k[(2 * a) * nd + 2 * bn] += kab;
-                    k[(2 * a + 1) * nd + 2 * bn + 1] += kab;
-                    if axi {
-                        k[(2 * a) * nd + 2 * bn] += s[2] * g.n[a] * g.n[bn] / (g.r * g.r) * g.dv;
-                    }
+        // Every entry is summed, but only the upper triangle is kept (mirrored after the
+        // loop) so that the matrix is exactly symmetric.
+        for r in 0..nd {
+            let row = &mut k[r * nd..(r + 1) * nd];
+            let b = [bm[0][r], bm[1][r], bm[2][r], bm[3][r]];
+            let (sg, gr) = (sgrad[r / 2], &grad[r % 2]);
+            for c in 0..nd {
+                row[c] += b[0] * dbm[0][c]
+                    + b[1] * dbm[1][c]
+                    + b[2] * dbm[2][c]
+                    + b[3] * dbm[3][c]
+                    + sg[0] * gr[0][c]
+                    + sg[1] * gr[1][c];
+            }
+        }
+        if large && axi {
+            // hoop part of the geometric stiffness, on the radial dofs
+            for a in 0..NN {
+                for bn in 0..NN {
+                    k[(2 * a) * nd + 2 * bn] += s[2] * g.n[a] * g.n[bn] / (g.r * g.r) * g.dv;
                 }
             }
         }
     }
     if let Some(k) = ke {
-        // Only the upper triangle was accumulated: mirror it.
+        // mirror the upper triangle: exactly symmetric
         for r in 0..nd {
             for c in 0..r {
                 k[r * nd + c] = k[c * nd + r];
