@@ -111,6 +111,18 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(norms)
     }
 
+    fn evaluate_contact_tangent(&mut self, x: &[f64], lambda: f64, r: &mut [f64]) -> Result<Norms> {
+        // the solid matrix keeps the last assembled tangent; contact terms are current
+        let norms = self.evaluate(x, lambda, r, false)?;
+        self.coupled.update(
+            &self.solid.asm.matrix,
+            &self.solid.asm.dofs,
+            self.lam.len(),
+            &self.triplets,
+        );
+        Ok(norms)
+    }
+
     fn matrix(&self) -> &SparseMatrix {
         &self.coupled.matrix
     }

@@ -40,6 +40,8 @@ struct Block {
     /// (NONE: the shifted diagonal of an interface unknown).
     local: SparseMatrix,
     source: Vec<usize>,
+    /// The values of A the last factorisation was of (per `source` entry).
+    factored: Vec<f64>,
     ldlt: OrderedLdlt,
     shift: f64,
     /// Of the last factorisation: the pivots of the interior (in the factorised order),
@@ -359,6 +361,7 @@ impl Block {
             gamma,
             local,
             source,
+            factored: vec![],
             ldlt,
             shift: -1.0,
             pivots: vec![],
@@ -368,8 +371,20 @@ impl Block {
     }
 
     fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
-        // σ of the size of the block's largest diagonal entry: the trailing pivots are
-        // then σ − (a positive semi-definite term), negative and well scaled.
+        // Unchanged values (a Newton iteration that updated the contact terms only, which
+        // live in Γ × Γ): the factorisation stands.
+        let unchanged = self.factored.len() == self.source.len()
+            && self
+                .source
+                .iter()
+                .zip(&self.factored)
+                .all(|(&p, &v)| p == NONE || a.values[p] == v);
+        if unchanged {
+            return Ok(());
+        }
+        self.factored.clear(); // until this factorisation succeeds
+                               // σ of the size of the block's largest diagonal entry: the trailing pivots are
+                               // then σ − (a positive semi-definite term), negative and well scaled.
         let diag = self.unknowns[..self.interior]
             .iter()
             .filter_map(|&i| a.position(i, i).map(|p| a.values[p].abs()))
@@ -399,6 +414,11 @@ impl Block {
         let mut pivots = self.ldlt.pivots();
         pivots.truncate(self.interior);
         self.pivots = pivots;
+        self.factored.extend(
+            self.source
+                .iter()
+                .map(|&p| if p == NONE { 0.0 } else { a.values[p] }),
+        );
         Ok(())
     }
 }

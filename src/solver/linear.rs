@@ -125,6 +125,13 @@ impl LinearSolver {
         }
     }
 
+    /// Whether saddle-point tangents are condensed on the contact interface (a tangent
+    /// that differs from the last one in its contact terms only then costs the interface
+    /// factorisation alone).
+    pub fn condenses_contact(&self) -> bool {
+        matches!(self.ldlt, Some(Factorisation::Interface(_))) && !self.lu_fallback
+    }
+
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         self.stalled = false;

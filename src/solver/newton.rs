@@ -33,6 +33,13 @@ pub trait Nonlinear {
         r: &mut [f64],
         with_tangent: bool,
     ) -> Result<Norms>;
+    /// Like `evaluate` with the tangent, but the tangent's displacement part may stay the
+    /// last assembled one while its contact part is current: for iterations that follow
+    /// contact status changes, when the linear solver keeps the bodies' factorisations
+    /// for such tangents (only the contact interface is refactorised).
+    fn evaluate_contact_tangent(&mut self, x: &[f64], lambda: f64, r: &mut [f64]) -> Result<Norms> {
+        self.evaluate(x, lambda, r, true)
+    }
     fn matrix(&self) -> &SparseMatrix;
     /// Updates discrete statuses (contact) from the new iterate; returns how many changed.
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
@@ -91,6 +98,9 @@ pub struct Iteration {
     pub relative_residual: f64,
     /// Contact statuses changed by the update after this iteration's correction.
     pub status_changes: usize,
+    /// Evaluated at the previous iteration's point with the statuses its correction
+    /// changed (an active-set re-solve: only the contact terms and the interface redone).
+    pub active_set_resolve: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -130,6 +140,9 @@ impl NewtonSettings {
         }
     }
 }
+
+/// Active-set re-solves in a row from one linearisation point.
+const MAX_RESOLVES: usize = 4;
 
 /// x0 + Δx with K(x0, t0) Δx = −∂R/∂t (t1 − t0), the derivative taken by a difference
 /// over a millionth of the step; None if the tangent cannot be factorised.
@@ -251,6 +264,9 @@ pub fn solve(
         let mut changes = usize::MAX;
         // the last correction, for the backtracking below
         let mut last_dx: Option<Vec<f64>> = None;
+        // re-solve from the last linearisation point with new statuses (see below)
+        let mut resolve = false;
+        let mut resolves = 0;
         let mut last_size = f64::INFINITY;
         for it in 0..=settings.max_iterations {
             let t = std::time::Instant::now();
@@ -259,7 +275,11 @@ pub fn solve(
             // is not converged after all.
             let prev = step.iterations.last().map(|i| i.relative_residual);
             let likely_converged = changes == 0 && prev.is_some_and(|p| p < 1e-3);
-            let mut norms = problem.evaluate(&x, lambda, &mut r, !likely_converged)?;
+            let mut norms = if resolve {
+                problem.evaluate_contact_tangent(&x, lambda, &mut r)?
+            } else {
+                problem.evaluate(&x, lambda, &mut r, !likely_converged)?
+            };
             if likely_converged && !meets_tolerance(&norms) {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
@@ -282,9 +302,15 @@ pub fn solve(
                 iteration: it,
                 relative_residual: rel,
                 status_changes: 0,
+                active_set_resolve: resolve,
             });
             if settings.verbose {
-                eprintln!("  step t={lambda:.4} iter {it:2}  residual {rel:.3e}");
+                let note = if resolve {
+                    "  (same point, new contact statuses)"
+                } else {
+                    ""
+                };
+                eprintln!("  step t={lambda:.4} iter {it:2}  residual {rel:.3e}{note}");
             }
             if !rel.is_finite() {
                 failure = Some("non-finite residual".to_string());
@@ -357,6 +383,7 @@ pub fn solve(
                 ));
                 break;
             }
+            let x_lin = x.clone();
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
             }
@@ -365,6 +392,18 @@ pub fn solve(
             step.iterations.last_mut().unwrap().status_changes = changes;
             if settings.verbose && changes > 0 {
                 eprintln!("                        {changes} contact status changes");
+            }
+            // Statuses changed: solve again from the same point with the new statuses (an
+            // active-set iteration on this linearisation), when the solver condenses on
+            // the contact interface: the bodies' tangent and factorisations are those of
+            // this point, only the contact terms and the interface are redone. A few in a
+            // row at most (cycling statuses), then the step moves on.
+            resolve = changes > 0 && resolves < MAX_RESOLVES && lin.condenses_contact();
+            if resolve {
+                resolves += 1;
+                x = x_lin;
+            } else {
+                resolves = 0;
             }
         }
         report.total_iterations += step.iterations.len() - 1;
