@@ -26,6 +26,9 @@ pub struct SolidProblem<'m> {
     pub residual_full: Vec<f64>,
     /// The time of the current state (NaN before the first evaluation).
     pub time: f64,
+    /// The free unknowns `fint` was assembled at, and whether the tangent was too (an
+    /// evaluation at the same state, e.g. an active-set re-solve, assembles nothing).
+    assembled_at: Option<(Vec<f64>, bool)>,
 }
 
 /// Max-norms used by the convergence test (as the reference code: displacement rows only).
@@ -69,6 +72,7 @@ impl<'m> SolidProblem<'m> {
             fint: vec![0.0; n],
             residual_full: vec![0.0; n],
             time: f64::NAN,
+            assembled_at: None,
         }
     }
 
@@ -103,10 +107,21 @@ impl<'m> SolidProblem<'m> {
     /// Sets the free unknowns `x` and the time, assembles internal forces (and the tangent
     /// if asked).
     pub fn set_state(&mut self, x: &[f64], t: f64, with_tangent: bool) -> Result<()> {
+        let same_time = t == self.time;
         self.set_time(t);
+        if same_time {
+            if let Some((at, tangent)) = &self.assembled_at {
+                if at.as_slice() == x && (*tangent || !with_tangent) {
+                    return Ok(());
+                }
+            }
+        }
+        self.assembled_at = None;
         self.asm.dofs.expand(x, &self.imposed, &mut self.u);
         self.asm
-            .assemble(self.mesh, &self.u, &mut self.fint, with_tangent)
+            .assemble(self.mesh, &self.u, &mut self.fint, with_tangent)?;
+        self.assembled_at = Some((x.to_vec(), with_tangent));
+        Ok(())
     }
 
     /// Residual f_int + extra − f_ext reduced to the free unknowns, with its norms.
