@@ -19,8 +19,10 @@
 use super::ldlt::{leading_order, OrderedLdlt};
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
-use faer::linalg::solvers::{PartialPivLu, Solve};
-use faer::Mat;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve};
+use faer::perm::PermRef;
+use faer::{Mat, Par};
 use rayon::prelude::*;
 
 /// Larger interfaces go to the saddle-point LDLᵀ (the dense LU grows as k³).
@@ -60,7 +62,7 @@ pub struct InterfaceSolver {
     gamma_entries: Vec<(usize, usize, usize)>,
     /// LU of the interface matrix restricted to `kept`; the `decoupled` unknowns (with
     /// their diagonal) are solved alone.
-    lu: Option<PartialPivLu<f64>>,
+    lu: DenseLu,
     kept: Vec<usize>,
     decoupled: Vec<(usize, f64)>,
 }
@@ -171,7 +173,7 @@ impl InterfaceSolver {
             gamma,
             blocks,
             gamma_entries,
-            lu: None,
+            lu: DenseLu::default(),
             kept: vec![],
             decoupled: vec![],
         }))
@@ -224,8 +226,7 @@ impl InterfaceSolver {
             }
         }
         let kept = &self.kept;
-        let reduced = Mat::<f64>::from_fn(kept.len(), kept.len(), |i, j| t[(kept[i], kept[j])]);
-        self.lu = Some(reduced.partial_piv_lu());
+        self.lu.factor(kept.len(), |i, j| t[(kept[i], kept[j])]);
         Ok(())
     }
 
@@ -265,10 +266,7 @@ impl InterfaceSolver {
             }
         }
         let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| xg[(self.kept[i], 0)]);
-        self.lu
-            .as_ref()
-            .expect("factor before solve")
-            .solve_in_place(xr.as_mut());
+        self.lu.solve(&mut xr);
         for (i, &g) in self.kept.iter().enumerate() {
             xg[(g, 0)] = xr[(i, 0)];
         }
@@ -306,6 +304,66 @@ impl InterfaceSolver {
         for (kk, &g) in self.gamma.iter().enumerate() {
             b[g] = xg[(kk, 0)];
         }
+    }
+}
+
+/// Dense LU with partial pivoting (sequential: faster than two threads at these sizes,
+/// and independent of the machine).
+struct DenseLu {
+    lu: Mat<f64>,
+    perm: Vec<usize>,
+    perm_inv: Vec<usize>,
+}
+
+const DENSE_PAR: Par = Par::Seq;
+
+impl Default for DenseLu {
+    fn default() -> Self {
+        DenseLu {
+            lu: Mat::zeros(0, 0),
+            perm: vec![],
+            perm_inv: vec![],
+        }
+    }
+}
+
+impl DenseLu {
+    fn factor(&mut self, k: usize, value: impl Fn(usize, usize) -> f64) {
+        self.lu = Mat::from_fn(k, k, value);
+        self.perm.resize(k, 0);
+        self.perm_inv.resize(k, 0);
+        let mut mem = MemBuffer::new(lu_factor::lu_in_place_scratch::<usize, f64>(
+            k,
+            k,
+            DENSE_PAR,
+            Default::default(),
+        ));
+        lu_factor::lu_in_place(
+            self.lu.as_mut(),
+            &mut self.perm,
+            &mut self.perm_inv,
+            DENSE_PAR,
+            MemStack::new(&mut mem),
+            Default::default(),
+        );
+    }
+
+    fn solve(&self, rhs: &mut Mat<f64>) {
+        let k = self.lu.nrows();
+        let perm = PermRef::new_checked(&self.perm, &self.perm_inv, k);
+        let mut mem = MemBuffer::new(lu_solve::solve_in_place_scratch::<usize, f64>(
+            k,
+            rhs.ncols(),
+            Par::Seq,
+        ));
+        lu_solve::solve_in_place(
+            self.lu.as_ref(),
+            self.lu.as_ref(),
+            perm,
+            rhs.as_mut(),
+            Par::Seq,
+            MemStack::new(&mut mem),
+        );
     }
 }
 
