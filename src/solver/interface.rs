@@ -155,9 +155,7 @@ impl InterfaceSolver {
         // the blocks' orderings and analyses, in parallel
         let blocks = parts
             .into_par_iter()
-            .map(|(unknowns, interior, block_gamma)| {
-                Block::new(a, unknowns, interior, block_gamma, &in_gamma)
-            })
+            .map(|(unknowns, interior, block_gamma)| Block::new(a, unknowns, interior, block_gamma))
             .collect::<Result<Vec<Block>>>()?;
         let mut gamma_entries = vec![];
         for (jc, &c) in gamma.iter().enumerate() {
@@ -373,42 +371,50 @@ impl Block {
         unknowns: Vec<usize>,
         interior: usize,
         gamma: Vec<usize>,
-        in_gamma: &[bool],
     ) -> Result<Block> {
         let m = unknowns.len();
         let mut local_of = vec![NONE; a.n];
         for (l, &g) in unknowns.iter().enumerate() {
             local_of[g] = l;
         }
-        // entries of A in the block (not between two interface unknowns), plus the
-        // interface diagonal
-        let mut source = vec![];
-        let columns: Vec<Vec<(usize, usize)>> = unknowns
-            .iter()
-            .enumerate()
-            .map(|(lc, &c)| {
-                let mut col: Vec<(usize, usize)> = vec![];
-                for p in a.col_ptr[c]..a.col_ptr[c + 1] {
-                    let r = a.row_idx[p];
-                    let lr = local_of[r];
-                    if lr != NONE && !(in_gamma[r] && in_gamma[c]) {
-                        col.push((lr, p));
+        // Entries of A in the block (not between two interface unknowns), plus the
+        // interface diagonal. The local numbering keeps the global order within the
+        // interior and within the interface, so each column comes out sorted as its
+        // interior rows, then its interface rows (of an interior column) or its diagonal
+        // (of an interface column).
+        let mut source = Vec::with_capacity(a.nnz() / 2);
+        let mut row_idx = Vec::with_capacity(a.nnz() / 2);
+        let mut col_ptr = Vec::with_capacity(m + 1);
+        col_ptr.push(0);
+        for (lc, &c) in unknowns.iter().enumerate() {
+            let rows = a.col_ptr[c]..a.col_ptr[c + 1];
+            for p in rows.clone() {
+                let lr = local_of[a.row_idx[p]];
+                if lr < interior {
+                    row_idx.push(lr);
+                    source.push(p);
+                }
+            }
+            if lc >= interior {
+                row_idx.push(lc);
+                source.push(NONE);
+            } else {
+                for p in rows {
+                    let lr = local_of[a.row_idx[p]];
+                    if lr != NONE && lr >= interior {
+                        row_idx.push(lr);
+                        source.push(p);
                     }
                 }
-                if lc >= interior {
-                    col.push((lc, NONE));
-                }
-                col.sort_unstable();
-                col
-            })
-            .collect();
-        let local = SparseMatrix::from_columns(
-            m,
-            columns.into_iter().map(|col| {
-                source.extend(col.iter().map(|e| e.1));
-                col.into_iter().map(|e| e.0).collect()
-            }),
-        );
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let local = SparseMatrix {
+            n: m,
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+        };
         let mut fwd = leading_order(&local, interior)?;
         fwd.extend(interior..m);
         let ldlt = OrderedLdlt::new(&local, fwd)?;
