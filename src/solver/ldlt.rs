@@ -297,11 +297,12 @@ impl OrderedLdlt {
         let mut tmp = vec![];
         for (begin, end, rows, vals) in self.supernodes() {
             let (c, ld) = (end - begin, end - begin + rows.len());
+            let yb = &mut y[begin..end];
             for j in 0..c {
-                let xj = y[begin + j];
-                let col = &vals[j * ld..(j + 1) * ld];
-                for i in j + 1..c {
-                    y[begin + i] -= col[i] * xj;
+                let xj = yb[j];
+                let col = &vals[j * ld + j + 1..j * ld + c];
+                for (yi, l) in yb[j + 1..].iter_mut().zip(col) {
+                    *yi -= l * xj;
                 }
             }
             tmp.clear();
@@ -329,13 +330,10 @@ impl OrderedLdlt {
             for j in 0..c {
                 y[begin + j] -= dot(&vals[j * ld + c..(j + 1) * ld], &tmp);
             }
+            let yb = &mut y[begin..end];
             for j in (0..c).rev() {
-                let col = &vals[j * ld..(j + 1) * ld];
-                let mut xj = y[begin + j];
-                for i in j + 1..c {
-                    xj -= col[i] * y[begin + i];
-                }
-                y[begin + j] = xj;
+                let below = dot(&vals[j * ld + j + 1..j * ld + c], &yb[j + 1..]);
+                yb[j] -= below;
             }
         }
     }
