@@ -32,6 +32,24 @@ impl SparseMatrix {
         }
     }
 
+    /// The n × n matrix of the given (row, column, value) entries, repeated ones summed.
+    pub fn from_entries(n: usize, entries: &[(usize, usize, f64)]) -> Self {
+        let mut cols: Vec<Vec<usize>> = vec![vec![]; n];
+        for &(r, c, _) in entries {
+            cols[c].push(r);
+        }
+        for rows in &mut cols {
+            rows.sort_unstable();
+            rows.dedup();
+        }
+        let mut a = SparseMatrix::from_columns(n, cols.into_iter());
+        for &(r, c, v) in entries {
+            let q = a.position(r, c).expect("entry in the pattern");
+            a.values[q] += v;
+        }
+        a
+    }
+
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
     }

@@ -23,6 +23,17 @@ pub struct ContactProblem<'m> {
 }
 
 impl<'m> ContactProblem<'m> {
+    /// The coupled tangent from the solid matrix as last assembled and the contact
+    /// triplets of the last evaluation.
+    fn update_matrix(&mut self) {
+        self.coupled.update(
+            &self.solid.asm.matrix,
+            &self.solid.asm.dofs,
+            self.lam.len(),
+            &self.triplets,
+        );
+    }
+
     pub fn new(solid: SolidProblem<'m>, mut pairs: Vec<Box<dyn ContactPair>>) -> Self {
         let mut mult_base = vec![];
         let mut n = 0;
@@ -101,12 +112,7 @@ impl Nonlinear for ContactProblem<'_> {
             norms.constraint = norms.constraint.max(c);
         }
         if with_tangent {
-            self.coupled.update(
-                &self.solid.asm.matrix,
-                &self.solid.asm.dofs,
-                self.lam.len(),
-                &self.triplets,
-            );
+            self.update_matrix();
         }
         Ok(norms)
     }
@@ -114,12 +120,7 @@ impl Nonlinear for ContactProblem<'_> {
     fn evaluate_contact_tangent(&mut self, x: &[f64], lambda: f64, r: &mut [f64]) -> Result<Norms> {
         // the solid matrix keeps the last assembled tangent; contact terms are current
         let norms = self.evaluate(x, lambda, r, false)?;
-        self.coupled.update(
-            &self.solid.asm.matrix,
-            &self.solid.asm.dofs,
-            self.lam.len(),
-            &self.triplets,
-        );
+        self.update_matrix();
         Ok(norms)
     }
 

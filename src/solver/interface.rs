@@ -522,19 +522,7 @@ mod tests {
             e.push((b, a, -0.2));
         }
         e.push((m + 2, m + 2, 2.0)); // an open contact point: decoupled multiplier
-        let n = m + 3;
-        let cols = (0..n).map(|c| {
-            let mut rows: Vec<usize> = e.iter().filter(|t| t.1 == c).map(|t| t.0).collect();
-            rows.sort_unstable();
-            rows.dedup();
-            rows
-        });
-        let mut a = SparseMatrix::from_columns(n, cols);
-        for &(r, c, v) in &e {
-            let q = a.position(r, c).unwrap();
-            a.values[q] += v;
-        }
-        a
+        SparseMatrix::from_entries(m + 3, &e)
     }
 
     #[test]

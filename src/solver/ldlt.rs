@@ -472,18 +472,7 @@ mod tests {
             entries.push((b, n + k, -0.5));
             entries.push((n + k, n + k, 0.0));
         }
-        let t = n + m;
-        let cols = (0..t).map(|c| {
-            let mut rows: Vec<usize> = entries.iter().filter(|e| e.1 == c).map(|e| e.0).collect();
-            rows.sort_unstable();
-            rows
-        });
-        let mut a = SparseMatrix::from_columns(t, cols);
-        for &(r, c, v) in &entries {
-            let q = a.position(r, c).unwrap();
-            a.values[q] = v;
-        }
-        a
+        SparseMatrix::from_entries(n + m, &entries)
     }
 
     #[test]
