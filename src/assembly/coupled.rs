@@ -140,34 +140,65 @@ impl CoupledMatrix {
 
     /// The pattern: the solid's, the contributed entries and their transposes (structurally
     /// symmetric, as the saddle-point LDLᵀ of the symmetric part needs), and the diagonal.
+    /// Each column merges the solid's sorted rows, the sorted contributed rows and the
+    /// diagonal, recording where each solid entry lands.
     fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {
-        let mut cols: Vec<Vec<usize>> = (0..n)
-            .map(|c| {
-                let mut rows = if c < solid.n {
-                    solid.row_idx[solid.col_ptr[c]..solid.col_ptr[c + 1]].to_vec()
-                } else {
-                    vec![]
-                };
-                rows.push(c);
-                rows
-            })
-            .collect();
+        let mut extra: Vec<(usize, usize)> = Vec::with_capacity(2 * key.len());
         for &(c, r) in key {
-            cols[c].push(r);
-            cols[r].push(c);
+            extra.push((c, r));
+            extra.push((r, c));
         }
-        for rows in &mut cols {
-            rows.sort_unstable();
-            rows.dedup();
-        }
-        self.matrix = SparseMatrix::from_columns(n, cols.into_iter());
-        self.solid_map.clear();
-        for c in 0..solid.n {
-            for p in solid.col_ptr[c]..solid.col_ptr[c + 1] {
-                self.solid_map
-                    .push(self.matrix.position(solid.row_idx[p], c).unwrap());
+        extra.sort_unstable();
+        extra.dedup();
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::with_capacity(solid.nnz() + extra.len() + n);
+        let mut solid_map = vec![0usize; solid.nnz()];
+        let mut e = 0;
+        for c in 0..n {
+            let (mut p, end) = if c < solid.n {
+                (solid.col_ptr[c], solid.col_ptr[c + 1])
+            } else {
+                (0, 0)
+            };
+            let mut diagonal = true;
+            loop {
+                let rs = if p < end {
+                    solid.row_idx[p]
+                } else {
+                    usize::MAX
+                };
+                let rx = if e < extra.len() && extra[e].0 == c {
+                    extra[e].1
+                } else {
+                    usize::MAX
+                };
+                let rd = if diagonal { c } else { usize::MAX };
+                let r = rs.min(rx).min(rd);
+                if r == usize::MAX {
+                    break;
+                }
+                if rs == r {
+                    solid_map[p] = row_idx.len();
+                    p += 1;
+                }
+                if rx == r {
+                    e += 1;
+                }
+                if rd == r {
+                    diagonal = false;
+                }
+                row_idx.push(r);
             }
+            col_ptr.push(row_idx.len());
         }
+        self.matrix = SparseMatrix {
+            n,
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+        };
+        self.solid_map = solid_map;
         self.rebuilds += 1;
     }
 }
