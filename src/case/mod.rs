@@ -642,8 +642,9 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
-        // Contact tangents are symmetric saddle-point matrices up to the friction and mortar
-        // geometry terms: LDLᵀ of the symmetric part with GMRES on the exact matrix (LU if
+        // Contact tangents are saddle-point matrices, non-symmetric with friction and mortar
+        // geometry terms: condensed on the contact interface (exact), or for a large
+        // interface LDLᵀ of a symmetric approximation with GMRES on the exact matrix (LU if
         // that fails).
         let method = Method::SaddleLdlt;
         let mut report = newton::solve(&mut cp, &settings, method)?;

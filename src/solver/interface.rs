@@ -44,6 +44,8 @@ struct Block {
     source: Vec<usize>,
     /// The values of A the last factorisation was of (per `source` entry).
     factored: Vec<f64>,
+    /// Positions in A of the interior unknowns' diagonal entries (they set the shift).
+    diagonal: Vec<usize>,
     ldlt: OrderedLdlt,
     shift: f64,
     /// Of the last factorisation: the pivots of the interior (in the factorised order),
@@ -409,6 +411,12 @@ impl Block {
             }
             col_ptr.push(row_idx.len());
         }
+        let diagonal = (0..interior)
+            .filter_map(|l| {
+                let q = (col_ptr[l]..col_ptr[l + 1]).find(|&q| row_idx[q] == l)?;
+                Some(source[q])
+            })
+            .collect();
         let local = SparseMatrix {
             n: m,
             values: vec![0.0; row_idx.len()],
@@ -426,6 +434,7 @@ impl Block {
             local,
             source,
             factored: vec![],
+            diagonal,
             ldlt,
             shift: -1.0,
             pivots: vec![],
@@ -449,9 +458,10 @@ impl Block {
         self.factored.clear(); // until this factorisation succeeds
                                // σ of the size of the block's largest diagonal entry: the trailing pivots are
                                // then σ − (a positive semi-definite term), negative and well scaled.
-        let diag = self.unknowns[..self.interior]
+        let diag = self
+            .diagonal
             .iter()
-            .filter_map(|&i| a.position(i, i).map(|p| a.values[p].abs()))
+            .map(|&p| a.values[p].abs())
             .fold(0.0f64, f64::max);
         self.shift = -diag.max(f64::MIN_POSITIVE);
         let (source, shift) = (&self.source, self.shift);
