@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{bodies, case_head};
+use common::{block_contact, block_on_foundation, bodies, case_head, group_sum};
 use tribo::case::{build_mesh, run, schema::CaseFile};
 use tribo::mesh::generate::rectangle;
 use tribo::mesh::CellKind;
@@ -219,15 +219,8 @@ initial = "all"
 #[test]
 fn sliding_block_tangential_reaction_is_mu_times_normal() {
     for formulation in ["mortar", "point-to-segment"] {
-        let lower = rectangle([-1.0, -1.0], 4.0, 1.0, 8, 2, CellKind::Quad4, 0.0).unwrap();
-        let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5, 3, CellKind::Quad4, 0.0).unwrap();
-        let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
-        let extra = if formulation == "mortar" {
-            ""
-        } else {
-            "integration = \"nodal\""
-        };
-        let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
+        let (mesh, head) = block_on_foundation(4.0, 8);
+        let contact = block_contact(formulation);
         let text = format!(
             r#"{head}
 [[displacement]]
@@ -238,26 +231,14 @@ dy = 0.0
 group = "UpperTop"
 dx = 0.05
 dy = -0.005
-[[contact]]
-slave = "UpperBottom"
-master = "LowerTop"
-formulation = "{formulation}"
-initial = "all"
-friction = 0.3
-{extra}
+{contact}
 [solver]
 steps = 4
 "#
         );
         let case: CaseFile = toml::from_str(&text).unwrap();
         let out = run(&case, &mesh, false).unwrap();
-        let (rx, ry) = mesh
-            .node_group("UpperTop")
-            .unwrap()
-            .iter()
-            .fold((0.0, 0.0), |(x, y), &n| {
-                (x + out.reactions[2 * n], y + out.reactions[2 * n + 1])
-            });
+        let (rx, ry) = group_sum(&mesh, "UpperTop", &out.reactions);
         let ratio = (rx / ry).abs();
         println!("{formulation}: RX = {rx:.6e}, RY = {ry:.6e}, |RX/RY| = {ratio:.9}");
         // reactions are the forces on the block's top: pressed down means RY < 0

@@ -3,7 +3,7 @@
 
 mod common;
 
-use common::{bodies, case_head};
+use common::{block_contact, block_on_foundation, bodies, case_head, group_sum};
 use tribo::case::run;
 use tribo::case::schema::CaseFile;
 use tribo::mesh::generate::{rectangle, ring};
@@ -129,15 +129,8 @@ steps = 6
 #[test]
 fn large_sliding_along_a_flat_foundation_keeps_coulomb_and_the_normal_force() {
     for formulation in ["mortar", "point-to-segment"] {
-        let lower = rectangle([-1.0, -1.0], 6.0, 1.0, 24, 2, CellKind::Quad4, 0.0).unwrap();
-        let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5, 3, CellKind::Quad4, 0.0).unwrap();
-        let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
-        let extra = if formulation == "mortar" {
-            ""
-        } else {
-            "integration = \"nodal\""
-        };
-        let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
+        let (mesh, head) = block_on_foundation(6.0, 24);
+        let contact = block_contact(formulation);
         let text = format!(
             r#"{head}
 [model]
@@ -160,23 +153,14 @@ function = "drag"
 group = "UpperTop"
 dy = -0.005
 function = "press"
-[[contact]]
-slave = "UpperBottom"
-master = "LowerTop"
-formulation = "{formulation}"
-initial = "all"
-friction = 0.3
-{extra}
+{contact}
 [solver]
 steps = 22
 "#
         );
         let out = run(&case(&text), &mesh, false).unwrap();
         let top = mesh.node_group("UpperTop").unwrap();
-        let force = |r: &[f64]| {
-            top.iter()
-                .fold((0.0, 0.0), |(x, y), &n| (x + r[2 * n], y + r[2 * n + 1]))
-        };
+        let force = |r: &[f64]| group_sum(&mesh, "UpperTop", r);
         let sliding: Vec<&tribo::case::StepOutcome> =
             out.steps.iter().filter(|s| s.time >= 2.0).collect();
         assert_eq!(sliding.len(), 19, "{formulation}");

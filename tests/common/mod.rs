@@ -91,3 +91,40 @@ pub fn bodies(parts: &[(&str, &Mesh)]) -> Mesh {
     }
     b.finish().unwrap()
 }
+
+/// A 1 × 0.5 block (5 × 3 Quad4, groups `Upper…`) standing on a foundation `length` long
+/// and 1 deep from x = −1 (`nx` × 2 Quad4, groups `Lower…`), both E = 1000, ν = 0.3: the
+/// mesh and the head of its case file.
+pub fn block_on_foundation(length: f64, nx: usize) -> (Mesh, String) {
+    use tribo::mesh::generate::rectangle;
+    use tribo::mesh::CellKind;
+    let lower = rectangle([-1.0, -1.0], length, 1.0, nx, 2, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5, 3, CellKind::Quad4, 0.0).unwrap();
+    let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
+    let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
+    (mesh, head)
+}
+
+/// The block's bottom on the foundation's top with Coulomb friction μ = 0.3 in the given
+/// formulation, every point closed at the start (point-to-segment: nodal integration).
+pub fn block_contact(formulation: &str) -> String {
+    let integration = if formulation == "mortar" {
+        ""
+    } else {
+        "integration = \"nodal\"\n"
+    };
+    format!(
+        "[[contact]]\nslave = \"UpperBottom\"\nmaster = \"LowerTop\"\nformulation = \"{formulation}\"\n\
+         initial = \"all\"\nfriction = 0.3\n{integration}"
+    )
+}
+
+/// Σ over the nodes of `group` of a full-dof vector (reactions, say): (x, y).
+pub fn group_sum(mesh: &Mesh, group: &str, values: &[f64]) -> (f64, f64) {
+    mesh.node_group(group)
+        .unwrap()
+        .iter()
+        .fold((0.0, 0.0), |(x, y), &n| {
+            (x + values[2 * n], y + values[2 * n + 1])
+        })
+}
