@@ -28,6 +28,7 @@ impl<'m> ContactProblem<'m> {
     fn update_matrix(&mut self) {
         self.coupled.update(
             &self.solid.asm.matrix,
+            self.solid.asm.matrix_generation,
             &self.solid.asm.dofs,
             self.lam.len(),
             &self.triplets,
