@@ -169,40 +169,67 @@ impl OrderedLdlt {
         for (i, &p) in fwd.iter().enumerate() {
             inv[p] = i;
         }
-        // pattern of P A Pᵀ (lower): entry (r, c) of A goes to (inv r, inv c) if inv r ≥ inv c
-        let mut cols: Vec<Vec<(usize, usize)>> = vec![vec![]; n];
+        // pattern of P A Pᵀ (lower): entry (r, c) of A goes to (inv r, inv c) if inv r ≥ inv c;
+        // built by counting (no per-column allocations), each column then sorted
+        let mut col_ptr = vec![0usize; n + 1];
+        for c in 0..n {
+            for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
+                if inv[r] >= inv[c] {
+                    col_ptr[inv[c] + 1] += 1;
+                }
+            }
+        }
+        for j in 0..n {
+            col_ptr[j + 1] += col_ptr[j];
+        }
+        let mut fill = col_ptr.clone();
+        let mut entries = vec![(0usize, 0usize); col_ptr[n]];
         for c in 0..n {
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
                 let (ir, ic) = (inv[a.row_idx[p]], inv[c]);
                 if ir >= ic {
-                    cols[ic].push((ir, p));
+                    entries[fill[ic]] = (ir, p);
+                    fill[ic] += 1;
                 }
             }
         }
         let mut map = vec![NONE; a.nnz()];
-        let mut next = 0;
-        let permuted = SparseMatrix::from_columns(
-            n,
-            cols.into_iter().map(|mut col| {
-                col.sort_unstable();
-                for &(_, p) in &col {
-                    map[p] = next;
-                    next += 1;
-                }
-                col.into_iter().map(|(r, _)| r).collect()
-            }),
-        );
-        // With the identity ordering faer's analysis reads the upper triangle (whatever the
-        // side argument), so it gets the transposed pattern; the numeric phase reads `permuted`.
-        let mut upper: Vec<Vec<usize>> = vec![vec![]; n];
-        for c in 0..n {
-            for &r in &permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]] {
-                upper[r].push(c);
+        let mut row_idx = Vec::with_capacity(entries.len());
+        for j in 0..n {
+            let col = &mut entries[col_ptr[j]..col_ptr[j + 1]];
+            col.sort_unstable();
+            for &(r, p) in col.iter() {
+                map[p] = row_idx.len();
+                row_idx.push(r);
             }
         }
-        let upper = SparseMatrix::from_columns(n, upper.into_iter());
+        let permuted = SparseMatrix {
+            n,
+            values: vec![0.0; row_idx.len()],
+            col_ptr,
+            row_idx,
+        };
+        // With the identity ordering faer's analysis reads the upper triangle (whatever the
+        // side argument), so it gets the transposed pattern (columns visited in order: each
+        // transposed column comes out sorted); the numeric phase reads `permuted`.
+        let mut up_ptr = vec![0usize; n + 1];
+        for &r in &permuted.row_idx {
+            up_ptr[r + 1] += 1;
+        }
+        for j in 0..n {
+            up_ptr[j + 1] += up_ptr[j];
+        }
+        let mut up_fill = up_ptr.clone();
+        let mut up_rows = vec![0usize; permuted.row_idx.len()];
+        for c in 0..n {
+            for &r in &permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]] {
+                up_rows[up_fill[r]] = c;
+                up_fill[r] += 1;
+            }
+        }
+        let upper = SymbolicSparseColMatRef::new_checked(n, n, &up_ptr, None, &up_rows);
         let symbolic = factorize_symbolic_cholesky(
-            upper.as_faer().symbolic(),
+            upper,
             Side::Upper,
             SymmetricOrdering::Identity,
             // The simplicial kernel is several times slower at these sizes.
