@@ -135,9 +135,7 @@ impl CoupledMatrix {
             }
         }
         if scatter.len() < targets.len() {
-            let mut key: Vec<(usize, usize)> = targets.iter().map(|t| (t.0, t.1)).collect();
-            key.sort_unstable();
-            key.dedup();
+            let key = sorted_unique(n, targets.iter().map(|t| (t.0, t.1)));
             if key != self.key || !fits {
                 self.rebuild(solid, n, &key);
                 self.key = key;
@@ -162,13 +160,7 @@ impl CoupledMatrix {
     /// Each column merges the solid's sorted rows, the sorted contributed rows and the
     /// diagonal, recording where each solid entry lands.
     fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {
-        let mut extra: Vec<(usize, usize)> = Vec::with_capacity(2 * key.len());
-        for &(c, r) in key {
-            extra.push((c, r));
-            extra.push((r, c));
-        }
-        extra.sort_unstable();
-        extra.dedup();
+        let extra = sorted_unique(n, key.iter().flat_map(|&(c, r)| [(c, r), (r, c)]));
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);
         let mut row_idx = Vec::with_capacity(solid.nnz() + extra.len() + n);
@@ -222,9 +214,61 @@ impl CoupledMatrix {
     }
 }
 
+/// The distinct (column, row) pairs (both < n), sorted: bucketed by column (counting), then
+/// each column's rows sorted and deduplicated in place.
+fn sorted_unique(
+    n: usize,
+    pairs: impl Iterator<Item = (usize, usize)> + Clone,
+) -> Vec<(usize, usize)> {
+    let mut ptr = vec![0usize; n + 1];
+    for (c, _) in pairs.clone() {
+        ptr[c + 1] += 1;
+    }
+    for j in 0..n {
+        ptr[j + 1] += ptr[j];
+    }
+    let mut fill = ptr.clone();
+    let mut rows = vec![0usize; ptr[n]];
+    for (c, r) in pairs {
+        rows[fill[c]] = r;
+        fill[c] += 1;
+    }
+    let mut out = Vec::with_capacity(rows.len());
+    for c in 0..n {
+        let col = &mut rows[ptr[c]..ptr[c + 1]];
+        col.sort_unstable();
+        let mut last = usize::MAX;
+        for &r in col.iter() {
+            if r != last {
+                out.push((c, r));
+                last = r;
+            }
+        }
+    }
+    out
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn sorted_unique_equals_sort_and_dedup() {
+        let pairs: Vec<(usize, usize)> = (0..500u64)
+            .map(|i| {
+                let h = i.wrapping_mul(2654435761) ^ (i >> 3);
+                ((h % 37) as usize, ((h / 37) % 41) as usize)
+            })
+            .collect();
+        let mut expected = pairs.clone();
+        expected.sort_unstable();
+        expected.dedup();
+        assert!(
+            expected.len() < pairs.len(),
+            "the sample has repeated pairs"
+        );
+        assert_eq!(sorted_unique(41, pairs.iter().copied()), expected);
+    }
 
     /// Re-combining the same solid matrix with other triplets (the fast path of an
     /// active-set re-solve) gives exactly the values of a fresh combination.
