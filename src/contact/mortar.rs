@@ -135,7 +135,7 @@ impl Mortar {
             .iter()
             .map(|&c| mesh.cell_nodes(c).iter().map(|n| mult_of[n]).collect())
             .collect();
-        let candidates = initial_candidates(mesh, &slave, &master);
+        let candidates = initial_candidates(mesh, &slave, &master, 1.0);
         let mut m = Mortar {
             slave,
             master,
@@ -821,7 +821,7 @@ impl ContactPair for Mortar {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         // Re-pair on the current geometry (large sliding): the master cells near each slave
         // cell now; a new set changes the residual, so it counts as a status change.
-        let near = candidates_at(mesh, Some(u), &self.slave, &self.master);
+        let near = candidates_at(mesh, Some(u), &self.slave, &self.master, 1.0);
         let mut changes = 0;
         if near != self.candidates {
             changes += 1;

@@ -88,6 +88,13 @@ impl Default for Options {
     }
 }
 
+/// A point is paired with the master surface only within this many times the larger of
+/// its cell's and the nearest master cell's length; the initial candidates reach further
+/// (CANDIDATE_MARGIN times the cells' sizes), so that a body closing a gap of about one
+/// cell pairs inside the initial pattern (no new analysis of the matrix).
+const PAIRING_REACH: f64 = 2.0;
+const CANDIDATE_MARGIN: f64 = 3.0;
+
 #[derive(Clone, Debug)]
 struct Point {
     /// Index into slave.cells.
@@ -258,7 +265,7 @@ impl PointToSegment {
             }
         }
         let n_points = points.len();
-        let candidates = initial_candidates(mesh, &slave, &master);
+        let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         PointToSegment {
             slave,
             master,
@@ -367,8 +374,26 @@ impl PointToSegment {
                 best = Some((d2, im, xi, over));
             }
         }
+        // A point farther from the master surface than PAIRING_REACH times the larger of
+        // its cell and the nearest master cell stays unpaired (inactive, no couplings): the pattern,
+        // and so the contact interface the solver condenses on, then holds only the part
+        // of the slave surface within reach. Pairing is redone at every status update, so
+        // a point that comes within reach is paired (and may close) there.
+        let length = |c: usize| {
+            let nodes = mesh.cell_nodes(c);
+            let (a, b) = (
+                Self::current(mesh, u, nodes[0]),
+                Self::current(mesh, u, nodes[1]),
+            );
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        };
+        let ic = self.points[i].cell;
+        let best = best.filter(|&(d2, im, _, _)| {
+            let reach =
+                PAIRING_REACH * length(self.slave.cells[ic]).max(length(self.master.cells[im]));
+            d2 <= reach * reach
+        });
         if let Some((_, im, _, _)) = best {
-            let ic = self.points[i].cell;
             if !self.candidates[ic].contains(&im) {
                 self.add_candidates(mesh, ic, im);
             }
@@ -679,8 +704,11 @@ impl PointToSegment {
         self.pattern_sent.set(Some(self.candidates_generation));
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             let mut dofs: Vec<usize> = vec![];
-            for &n in mesh.cell_nodes(sc) {
-                dofs.extend([2 * n, 2 * n + 1]);
+            // a slave cell with no master cell within reach has no coupling (yet)
+            if !self.candidates[ic].is_empty() {
+                for &n in mesh.cell_nodes(sc) {
+                    dofs.extend([2 * n, 2 * n + 1]);
+                }
             }
             for &im in &self.candidates[ic] {
                 for &n in mesh.cell_nodes(self.master.cells[im]) {
@@ -948,9 +976,15 @@ impl PointToSegment {
 }
 
 /// Master cells within reach of each slave cell on the initial geometry: those whose
-/// bounding box, grown by the larger of the two cells' sizes, meets the slave cell's.
-pub fn initial_candidates(mesh: &Mesh, slave: &Surface, master: &Surface) -> Vec<Vec<usize>> {
-    candidates_at(mesh, None, slave, master)
+/// bounding box, grown by `margin` times the larger of the two cells' sizes, meets the
+/// slave cell's.
+pub fn initial_candidates(
+    mesh: &Mesh,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+) -> Vec<Vec<usize>> {
+    candidates_at(mesh, None, slave, master, margin)
 }
 
 /// The same on the geometry displaced by `u` (full dofs), when given.
@@ -959,6 +993,7 @@ pub fn candidates_at(
     u: Option<&[f64]>,
     slave: &Surface,
     master: &Surface,
+    margin: f64,
 ) -> Vec<Vec<usize>> {
     let bbox = |c: usize| {
         let mut lo = [f64::MAX; 2];
@@ -983,7 +1018,7 @@ pub fn candidates_at(
                 .iter()
                 .enumerate()
                 .filter(|(_, (lo, hi))| {
-                    let r = ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]));
+                    let r = margin * ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]));
                     (0..2).all(|d| lo[d] - r <= shi[d] && slo[d] <= hi[d] + r)
                 })
                 .map(|(i, _)| i)
