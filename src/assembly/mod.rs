@@ -115,25 +115,57 @@ impl Assembler {
                 "matrix too large for 32-bit scatter positions",
             ));
         }
+        // Scatter positions: NONE (fixed dof, or upper triangle when lower_only), LINKED,
+        // or the position in the matrix, found column by column through a row → position
+        // table of that column (no search per entry).
         let mut scatter_start = vec![0usize];
-        let mut scatter = vec![];
         for &c in &cells {
+            let nd = 2 * mesh.cell_nodes(c).len();
+            scatter_start.push(scatter_start.last().unwrap() + nd * nd);
+        }
+        let mut scatter = vec![NONE; *scatter_start.last().unwrap()];
+        let free_of = |c: usize, a: usize| {
             let nodes = mesh.cell_nodes(c);
-            let nd = 2 * nodes.len();
+            dofs.roles[2 * nodes[a / 2] + a % 2]
+        };
+        for (i, &c) in cells.iter().enumerate() {
+            let nd = 2 * mesh.cell_nodes(c).len();
             for a in 0..nd {
-                let ra = dofs.roles[2 * nodes[a / 2] + a % 2];
                 for b in 0..nd {
-                    let rb = dofs.roles[2 * nodes[b / 2] + b % 2];
-                    let pos = match (ra, rb) {
-                        (Role::Free(i), Role::Free(j)) if lower_only && i < j => NONE,
-                        (Role::Free(i), Role::Free(j)) => matrix.position(i, j).unwrap() as u32,
-                        (Role::Fixed, _) | (_, Role::Fixed) => NONE,
-                        _ => LINKED,
+                    let linked = match (free_of(c, a), free_of(c, b)) {
+                        (Role::Fixed, _) | (_, Role::Fixed) | (Role::Free(_), Role::Free(_)) => {
+                            false
+                        }
+                        _ => true,
                     };
-                    scatter.push(pos);
+                    if linked {
+                        scatter[scatter_start[i] + a * nd + b] = LINKED;
+                    }
                 }
             }
-            scatter_start.push(scatter.len());
+        }
+        let mut position_of_row = vec![u32::MAX; nf];
+        for j in 0..nf {
+            let rows = matrix.col_ptr[j]..matrix.col_ptr[j + 1];
+            for q in rows.clone() {
+                position_of_row[matrix.row_idx[q]] = q as u32;
+            }
+            for &i in &cells_of[count[j]..count[j + 1]] {
+                let c = cells[i];
+                let nd = 2 * mesh.cell_nodes(c).len();
+                for b in 0..nd {
+                    if !matches!(free_of(c, b), Role::Free(jb) if jb == j) {
+                        continue;
+                    }
+                    for a in 0..nd {
+                        if let Role::Free(ia) = free_of(c, a) {
+                            if !(lower_only && ia < j) {
+                                scatter[scatter_start[i] + a * nd + b] = position_of_row[ia];
+                            }
+                        }
+                    }
+                }
+            }
         }
         Ok(Assembler {
             dofs,
