@@ -132,12 +132,10 @@ impl Assembler {
             let nd = 2 * mesh.cell_nodes(c).len();
             for a in 0..nd {
                 for b in 0..nd {
-                    let linked = match (free_of(c, a), free_of(c, b)) {
-                        (Role::Fixed, _) | (_, Role::Fixed) | (Role::Free(_), Role::Free(_)) => {
-                            false
-                        }
-                        _ => true,
-                    };
+                    let linked = !matches!(
+                        (free_of(c, a), free_of(c, b)),
+                        (Role::Fixed, _) | (_, Role::Fixed) | (Role::Free(_), Role::Free(_))
+                    );
                     if linked {
                         scatter[scatter_start[i] + a * nd + b] = LINKED;
                     }
