@@ -106,3 +106,23 @@ fn pattern_holds_the_slave_surface_within_reach_only() {
         "the far end, now over the master, is coupled: {after:?}"
     );
 }
+
+/// Mortar re-pairs on the current geometry at every status update; the pattern covers
+/// the master cells within a few cell sizes, so as the SSNP154 contact zone grows under
+/// load the matrix keeps its pattern and is analysed once.
+#[test]
+fn mortar_contact_zone_grows_inside_one_pattern() {
+    use std::path::Path;
+    use tribo::case::{self, ssnp154};
+    for quadratic in [false, true] {
+        let spec = ssnp154::builtin_mesh(quadratic, 1.5);
+        let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
+        let mut c = ssnp154::contact_case("A", spec, Some("mortar"));
+        ssnp154::choose_mortar_slave(&mut c, &mesh);
+        let out = case::run(&c, &mesh, false).unwrap();
+        assert_eq!(
+            out.report.symbolic_factorizations, 1,
+            "quadratic {quadratic}: one analysis"
+        );
+    }
+}

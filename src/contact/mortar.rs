@@ -31,6 +31,11 @@ use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 
+/// The matrix pattern holds the couplings of the master cells within this many cell
+/// sizes of each slave cell (the pairing itself uses one), so that a contact zone growing
+/// under load re-pairs inside it.
+const PATTERN_MARGIN: f64 = 3.0;
+
 pub struct Mortar {
     pub slave: Surface,
     pub master: Surface,
@@ -41,6 +46,10 @@ pub struct Mortar {
     /// slave cells around each slave node (for the averaged normals)
     cells_of_node: HashMap<usize, Vec<usize>>,
     candidates: Vec<Vec<usize>>,
+    /// A superset of the candidates over the whole solve (those within PATTERN_MARGIN
+    /// cell sizes initially, and every candidate found since): the matrix pattern covers
+    /// their couplings, so re-pairing as the bodies deform keeps it (and its analysis).
+    pattern_candidates: Vec<Vec<usize>>,
     /// The candidates at the start of the load step (restored when it is cut).
     saved_candidates: Vec<Vec<usize>>,
     /// for each full dof read by some slave cell's evaluation, those cells
@@ -136,6 +145,14 @@ impl Mortar {
             .map(|&c| mesh.cell_nodes(c).iter().map(|n| mult_of[n]).collect())
             .collect();
         let candidates = initial_candidates(mesh, &slave, &master, 1.0);
+        let mut pattern_candidates = initial_candidates(mesh, &slave, &master, PATTERN_MARGIN);
+        for (p, c) in pattern_candidates.iter_mut().zip(&candidates) {
+            for &im in c {
+                if !p.contains(&im) {
+                    p.push(im);
+                }
+            }
+        }
         let mut m = Mortar {
             slave,
             master,
@@ -144,6 +161,7 @@ impl Mortar {
             mult_of,
             cells_of_node,
             saved_candidates: candidates.clone(),
+            pattern_candidates,
             candidates,
             readers: HashMap::new(),
             saved_readers: HashMap::new(),
@@ -184,6 +202,15 @@ impl Mortar {
 
     /// Nodes whose positions the evaluation of slave cell ic depends on.
     fn nodes_read(&self, mesh: &Mesh, ic: usize) -> Vec<usize> {
+        self.nodes_with(mesh, ic, &self.candidates[ic])
+    }
+
+    /// The same with the pattern's candidates (a superset).
+    fn nodes_in_pattern(&self, mesh: &Mesh, ic: usize) -> Vec<usize> {
+        self.nodes_with(mesh, ic, &self.pattern_candidates[ic])
+    }
+
+    fn nodes_with(&self, mesh: &Mesh, ic: usize, masters: &[usize]) -> Vec<usize> {
         let c = self.slave.cells[ic];
         let mut nodes: Vec<usize> = mesh.cell_nodes(c).to_vec();
         for &n in &mesh.cell_nodes(c)[..2] {
@@ -191,7 +218,7 @@ impl Mortar {
                 nodes.extend_from_slice(mesh.cell_nodes(self.slave.cells[jc]));
             }
         }
-        for &im in &self.candidates[ic] {
+        for &im in masters {
             nodes.extend_from_slice(mesh.cell_nodes(self.master.cells[im]));
         }
         nodes.sort_unstable();
@@ -796,9 +823,10 @@ impl ContactPair for Mortar {
                 }
             }
         }
-        // pattern: every reader dof couples with every dof and multiplier of its cells
+        // pattern: every dof a cell may read couples with every dof and multiplier of its
+        // cells
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
-            let nodes = self.nodes_read(mesh, ic);
+            let nodes = self.nodes_in_pattern(mesh, ic);
             let mut mults: Vec<usize> = mesh
                 .cell_nodes(sc)
                 .iter()
@@ -825,6 +853,13 @@ impl ContactPair for Mortar {
         let mut changes = 0;
         if near != self.candidates {
             changes += 1;
+            for (p, c) in self.pattern_candidates.iter_mut().zip(&near) {
+                for &im in c {
+                    if !p.contains(&im) {
+                        p.push(im);
+                    }
+                }
+            }
             self.candidates = near;
             self.build_readers(mesh);
         }
