@@ -29,6 +29,7 @@ use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::fem::material::Modelisation;
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Mesh;
+use rayon::prelude::*;
 use std::collections::HashMap;
 
 /// The matrix pattern holds the couplings of the master cells within this many cell
@@ -84,7 +85,7 @@ pub struct Mortar {
     trial_scale: Vec<f64>,
     switches: Vec<u32>,
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
-    last_d: std::cell::RefCell<Vec<f64>>,
+    last_d: std::sync::Mutex<Vec<f64>>,
     /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
     cell_mults: Vec<Vec<usize>>,
 }
@@ -111,6 +112,17 @@ enum Branch {
     Free,
     Stick,
     Slip(f64),
+}
+
+/// Central-difference derivatives of one cell group's terms with respect to one dof:
+/// weighted gaps, weights, forces (ordered: the triplets and the sums of duplicates come out
+/// the same every time), slips and tangential forces.
+struct DofDerivatives {
+    dg: Vec<f64>,
+    dd: Vec<f64>,
+    df: std::collections::BTreeMap<(usize, usize), f64>,
+    ds: Vec<f64>,
+    dtf: std::collections::BTreeMap<(usize, usize), f64>,
 }
 
 fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
@@ -652,6 +664,7 @@ impl ContactPair for Mortar {
         let ndof = 2 * mesh.num_nodes();
         let nm = self.mult_nodes.len();
         let terms: Vec<CellTerms> = (0..self.slave.cells.len())
+            .into_par_iter()
             .map(|ic| self.cell_terms(mesh, u, ic))
             .collect();
         let (mut g, mut d) = (vec![0.0; nm], vec![0.0; nm]);
@@ -668,7 +681,7 @@ impl ContactPair for Mortar {
                 k.add(dof, ndof + mult_base + j, v);
             }
         }
-        self.last_d.borrow_mut().clone_from(&d);
+        self.last_d.lock().unwrap().clone_from(&d);
         // a node without weight (on the axis) carries no contact constraint
         let active: Vec<bool> = (0..nm).map(|j| self.active[j] && d[j] != 0.0).collect();
         // Augmentation on active nodes: the force of the energy (c/2) g̃_j²/D_j, zero at
@@ -742,40 +755,58 @@ impl ContactPair for Mortar {
                 }
             }
         }
-        // u-derivatives by central differences, cell by cell.
-        let mut up = u.to_vec();
+        // u-derivatives by central differences, cell by cell: each dof's in parallel (on
+        // a copy of u per thread), their triplets then emitted in dof order, so the
+        // matrix is the same whatever the threads.
         let mut dofs: Vec<usize> = self.readers.keys().copied().collect();
         dofs.sort_unstable();
-        for &dof in &dofs {
-            let h = 1e-7 * (1.0 + mesh.coords[dof / 2][dof % 2].abs().max(1.0));
-            let mut dg = vec![0.0; nm];
-            let mut dd = vec![0.0; nm];
-            // ordered: the triplets (and the sums of duplicates) come out the same every time
-            let mut df: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
-            let mut ds = vec![0.0; nm];
-            let mut dtf: std::collections::BTreeMap<(usize, usize), f64> = Default::default();
-            for (sign, s) in [(1.0, h), (-1.0, -h)] {
-                up[dof] = u[dof] + s;
-                for &ic in &self.readers[&dof] {
-                    let t = self.cell_terms(mesh, &up, ic);
-                    for (j, v) in t.gap {
-                        dg[j] += sign * v / (2.0 * h);
+        let derivatives: Vec<DofDerivatives> = dofs
+            .par_iter()
+            .map_init(
+                || u.to_vec(),
+                |up, &dof| {
+                    let h = 1e-7 * (1.0 + mesh.coords[dof / 2][dof % 2].abs().max(1.0));
+                    let mut dv = DofDerivatives {
+                        dg: vec![0.0; nm],
+                        dd: vec![0.0; nm],
+                        df: Default::default(),
+                        ds: vec![0.0; nm],
+                        dtf: Default::default(),
+                    };
+                    for (sign, s) in [(1.0, h), (-1.0, -h)] {
+                        up[dof] = u[dof] + s;
+                        for &ic in &self.readers[&dof] {
+                            let t = self.cell_terms(mesh, up, ic);
+                            for (j, v) in t.gap {
+                                dv.dg[j] += sign * v / (2.0 * h);
+                            }
+                            for (j, v) in t.dj {
+                                dv.dd[j] += sign * v / (2.0 * h);
+                            }
+                            for (j, row, v) in t.force {
+                                *dv.df.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
+                            }
+                            for (j, v) in t.slip {
+                                dv.ds[j] += sign * v / (2.0 * h);
+                            }
+                            for (j, row, v) in t.tforce {
+                                *dv.dtf.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
+                            }
+                        }
                     }
-                    for (j, v) in t.dj {
-                        dd[j] += sign * v / (2.0 * h);
-                    }
-                    for (j, row, v) in t.force {
-                        *df.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
-                    }
-                    for (j, v) in t.slip {
-                        ds[j] += sign * v / (2.0 * h);
-                    }
-                    for (j, row, v) in t.tforce {
-                        *dtf.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
-                    }
-                }
-            }
-            up[dof] = u[dof];
+                    up[dof] = u[dof];
+                    dv
+                },
+            )
+            .collect();
+        for (&dof, dv) in dofs.iter().zip(derivatives) {
+            let DofDerivatives {
+                dg,
+                dd,
+                df,
+                ds,
+                dtf,
+            } = dv;
             if let Some(mu) = self.friction {
                 for ((j, row), v) in dtf {
                     k.add(row, dof, lam[nm + j] * v);
@@ -917,7 +948,7 @@ impl ContactPair for Mortar {
     fn constraint_residual(&self, rl: &[f64], lam: &[f64]) -> f64 {
         // every row (weighted gap or slip, or multiplier × D_j / c) times c / D_j is a
         // pressure; relative to the largest normal multiplier
-        let d = self.last_d.borrow();
+        let d = self.last_d.lock().unwrap();
         let nm = self.mult_nodes.len();
         if d.len() != nm {
             return 0.0;
@@ -950,7 +981,7 @@ impl ContactPair for Mortar {
         // A node of zero weight (∫ N_j dA = 0: the Seg3 corner on the axis in axisymmetry)
         // carries no multiplier; its pressure is extrapolated from its cell's other nodes
         // (mid-side at ξ = 0, far corner at ξ = 1: p = 2 p_mid − p_far).
-        let d = self.last_d.borrow();
+        let d = self.last_d.lock().unwrap();
         let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
         let weightless = |k: usize| d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax);
         for nodes in &self.cell_mults {
