@@ -55,6 +55,11 @@ pub trait ContactPair {
     fn constraint_residual(&self, _rl: &[f64], _lam: &[f64]) -> f64 {
         0.0
     }
+    /// Whether Newton should re-solve from the same point when this pair's statuses change
+    /// (cheap when the contact terms are: the bodies' factorisations stand).
+    fn active_set_resolves(&self) -> bool {
+        true
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

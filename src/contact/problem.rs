@@ -147,6 +147,10 @@ impl Nonlinear for ContactProblem<'_> {
         self.solid.imposed_change(t0, t1)
     }
 
+    fn active_set_resolves(&self) -> bool {
+        self.pairs.iter().all(|p| p.active_set_resolves())
+    }
+
     fn backtracking(&self) -> bool {
         self.pairs.iter().any(|p| p.friction() > 0.0)
     }

@@ -45,6 +45,11 @@ pub trait Nonlinear {
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
         Ok(0)
     }
+    /// Whether status changes are worth an active-set re-solve from the same point (the
+    /// bodies' factorisations stand; see `solve`).
+    fn active_set_resolves(&self) -> bool {
+        false
+    }
     /// Whether a correction that raises the residual without any status change should be
     /// cut back (semi-smooth terms such as friction, which can cycle).
     fn backtracking(&self) -> bool {
@@ -267,6 +272,8 @@ pub fn solve(
         // re-solve from the last linearisation point with new statuses (see below)
         let mut resolve = false;
         let mut resolves = 0;
+        // the plain Newton iterate a re-solve replaced, and the status changes that led to it
+        let mut before_resolve: Option<(Vec<f64>, usize)> = None;
         let mut last_size = f64::INFINITY;
         for it in 0..=settings.max_iterations {
             let t = std::time::Instant::now();
@@ -352,7 +359,17 @@ pub fn solve(
             // that needed many, change it more than GMRES recovers cheaply (SSNP154 F: 20 %
             // slower; B and D lost a factorisation's time on the failed attempt).
             lin.reuse_factor = settings.reuse_factor && it == 0 && last_iterations <= 3;
-            if let Err(e) = lin.factor(problem.matrix()) {
+            let factored = lin.factor(problem.matrix());
+            // A re-solve is a shortcut: if its statuses make the system singular, Newton
+            // goes on from the plain iterate it replaced, as without re-solves.
+            if let (Err(_), true, Some(_)) = (&factored, resolve, &before_resolve) {
+                let (x_plain, _) = before_resolve.take().unwrap();
+                x = x_plain;
+                resolve = false;
+                resolves = 0;
+                continue;
+            }
+            if let Err(e) = factored {
                 failure = Some(e.to_string());
                 break;
             }
@@ -364,6 +381,16 @@ pub fn solve(
             let t = std::time::Instant::now();
             let solved = lin.solve(&mut r);
             report.time_solve_s += t.elapsed().as_secs_f64();
+            let limit = 1e6 * problem.length_scale();
+            let singular =
+                solved.is_err() || r[..lin.n_primal.min(n)].iter().any(|v| v.abs() > limit);
+            if let (true, true, Some(_)) = (singular, resolve, &before_resolve) {
+                let (x_plain, _) = before_resolve.take().unwrap();
+                x = x_plain;
+                resolve = false;
+                resolves = 0;
+                continue;
+            }
             if let Err(e) = solved {
                 failure = Some(e.to_string());
                 break;
@@ -398,11 +425,25 @@ pub fn solve(
             // the contact interface: the bodies' tangent and factorisations are those of
             // this point, only the contact terms and the interface are redone. A few in a
             // row at most (cycling statuses), then the step moves on.
-            resolve = changes > 0 && resolves < MAX_RESOLVES && lin.condenses_contact();
+            // Only while the changes decrease: statuses that keep flipping at one point
+            // (a cycle between two active sets) are left to the next Newton iteration.
+            let decreasing = before_resolve.as_ref().is_none_or(|b| changes < b.1);
+            resolve = changes > 0
+                && resolves < MAX_RESOLVES
+                && problem.active_set_resolves()
+                && lin.condenses_contact()
+                && (resolves == 0 || decreasing);
             if resolve {
                 resolves += 1;
-                x = x_lin;
+                before_resolve = Some((std::mem::replace(&mut x, x_lin), changes));
             } else {
+                if let (false, Some((x_plain, _))) = (decreasing, before_resolve.take()) {
+                    // this re-solve made things worse: back to the iterate it replaced,
+                    // with the statuses decided there
+                    x = x_plain;
+                    changes = problem.update_status(&x, lambda)?;
+                    step.iterations.last_mut().unwrap().status_changes = changes;
+                }
                 resolves = 0;
             }
         }
