@@ -272,8 +272,8 @@ pub fn solve(
         // re-solve from the last linearisation point with new statuses (see below)
         let mut resolve = false;
         let mut resolves = 0;
-        // the plain Newton iterate a re-solve replaced, and the status changes that led to it
-        let mut before_resolve: Option<(Vec<f64>, usize)> = None;
+        // the plain Newton iterate a re-solve replaced
+        let mut before_resolve: Option<Vec<f64>> = None;
         let mut last_size = f64::INFINITY;
         for it in 0..=settings.max_iterations {
             let t = std::time::Instant::now();
@@ -363,8 +363,7 @@ pub fn solve(
             // A re-solve is a shortcut: if its statuses make the system singular, Newton
             // goes on from the plain iterate it replaced, as without re-solves.
             if let (Err(_), true, Some(_)) = (&factored, resolve, &before_resolve) {
-                let (x_plain, _) = before_resolve.take().unwrap();
-                x = x_plain;
+                x = before_resolve.take().unwrap();
                 resolve = false;
                 resolves = 0;
                 continue;
@@ -385,8 +384,7 @@ pub fn solve(
             let singular =
                 solved.is_err() || r[..lin.n_primal.min(n)].iter().any(|v| v.abs() > limit);
             if let (true, true, Some(_)) = (singular, resolve, &before_resolve) {
-                let (x_plain, _) = before_resolve.take().unwrap();
-                x = x_plain;
+                x = before_resolve.take().unwrap();
                 resolve = false;
                 resolves = 0;
                 continue;
@@ -425,26 +423,17 @@ pub fn solve(
             // the contact interface: the bodies' tangent and factorisations are those of
             // this point, only the contact terms and the interface are redone. A few in a
             // row at most (cycling statuses), then the step moves on.
-            // Only while the changes decrease: statuses that keep flipping at one point
-            // (a cycle between two active sets) are left to the next Newton iteration.
-            let decreasing = before_resolve.as_ref().is_none_or(|b| changes < b.1);
+            // The formulation decides whether that pays (mortar: no).
             resolve = changes > 0
                 && resolves < MAX_RESOLVES
                 && problem.active_set_resolves()
-                && lin.condenses_contact()
-                && (resolves == 0 || decreasing);
+                && lin.condenses_contact();
             if resolve {
                 resolves += 1;
-                before_resolve = Some((std::mem::replace(&mut x, x_lin), changes));
+                before_resolve = Some(std::mem::replace(&mut x, x_lin));
             } else {
-                if let (false, Some((x_plain, _))) = (decreasing, before_resolve.take()) {
-                    // this re-solve made things worse: back to the iterate it replaced,
-                    // with the statuses decided there
-                    x = x_plain;
-                    changes = problem.update_status(&x, lambda)?;
-                    step.iterations.last_mut().unwrap().status_changes = changes;
-                }
                 resolves = 0;
+                before_resolve = None;
             }
         }
         report.total_iterations += step.iterations.len() - 1;
