@@ -220,19 +220,7 @@ fn sorted_unique(
     n: usize,
     pairs: impl Iterator<Item = (usize, usize)> + Clone,
 ) -> Vec<(usize, usize)> {
-    let mut ptr = vec![0usize; n + 1];
-    for (c, _) in pairs.clone() {
-        ptr[c + 1] += 1;
-    }
-    for j in 0..n {
-        ptr[j + 1] += ptr[j];
-    }
-    let mut fill = ptr.clone();
-    let mut rows = vec![0usize; ptr[n]];
-    for (c, r) in pairs {
-        rows[fill[c]] = r;
-        fill[c] += 1;
-    }
+    let (ptr, mut rows) = super::matrix::group_by_key(n, pairs);
     let mut out = Vec::with_capacity(rows.len());
     for c in 0..n {
         let col = &mut rows[ptr[c]..ptr[c + 1]];

@@ -4,6 +4,29 @@
 
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 
+/// Items grouped by their key in 0..n, in their order within each key (a counting sort):
+/// the start of each key's run (n + 1 entries, as a column pointer) and the items. The
+/// iterator is walked twice (counting, then filling).
+pub fn group_by_key<T: Copy + Default>(
+    n: usize,
+    items: impl Iterator<Item = (usize, T)> + Clone,
+) -> (Vec<usize>, Vec<T>) {
+    let mut start = vec![0usize; n + 1];
+    for (k, _) in items.clone() {
+        start[k + 1] += 1;
+    }
+    for k in 0..n {
+        start[k + 1] += start[k];
+    }
+    let mut fill = start.clone();
+    let mut grouped = vec![T::default(); start[n]];
+    for (k, v) in items {
+        grouped[fill[k]] = v;
+        fill[k] += 1;
+    }
+    (start, grouped)
+}
+
 #[derive(Clone, Debug, Default)]
 pub struct SparseMatrix {
     pub n: usize,
@@ -83,5 +106,18 @@ impl SparseMatrix {
             &self.row_idx,
         );
         SparseColMatRef::new(sym, &self.values)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn group_by_key_keeps_the_order_within_each_key() {
+        let items = [(2, 'a'), (0, 'b'), (2, 'c'), (1, 'd'), (0, 'e')];
+        let (start, grouped) = group_by_key(4, items.iter().copied());
+        assert_eq!(start, vec![0, 2, 3, 5, 5]);
+        assert_eq!(grouped, vec!['b', 'e', 'd', 'a', 'c']);
     }
 }

@@ -77,21 +77,14 @@ impl Assembler {
             touched_start.push(touched.len());
         }
         // free unknown → cells touching it
-        let mut count = vec![0usize; nf + 1];
-        for &j in &touched {
-            count[j + 1] += 1;
-        }
-        for j in 0..nf {
-            count[j + 1] += count[j];
-        }
-        let mut fill = count.clone();
-        let mut cells_of = vec![0usize; touched.len()];
-        for i in 0..cells.len() {
-            for &j in &touched[touched_start[i]..touched_start[i + 1]] {
-                cells_of[fill[j]] = i;
-                fill[j] += 1;
-            }
-        }
+        let (count, cells_of) = matrix::group_by_key(
+            nf,
+            (0..cells.len()).flat_map(|i| {
+                touched[touched_start[i]..touched_start[i + 1]]
+                    .iter()
+                    .map(move |&j| (j, i))
+            }),
+        );
         let mut mark = vec![usize::MAX; nf];
         let columns = (0..nf).map(|j| {
             let mut col = vec![];

@@ -375,10 +375,11 @@ impl PointToSegment {
             }
         }
         // A point farther from the master surface than PAIRING_REACH times the larger of
-        // its cell and the nearest master cell stays unpaired (inactive, no couplings): the pattern,
-        // and so the contact interface the solver condenses on, then holds only the part
-        // of the slave surface within reach. Pairing is redone at every status update, so
-        // a point that comes within reach is paired (and may close) there.
+        // its cell and the nearest master cell stays unpaired (inactive, no couplings):
+        // the pattern, and so the contact interface the solver condenses on, then holds
+        // only the part of the slave surface within reach. Pairing is redone at every
+        // status update, so a point that comes within reach is paired (and may close)
+        // there.
         let length = |c: usize| {
             let nodes = mesh.cell_nodes(c);
             let (a, b) = (

@@ -369,14 +369,14 @@ impl DenseLu {
         let mut mem = MemBuffer::new(lu_solve::solve_in_place_scratch::<usize, f64>(
             k,
             rhs.ncols(),
-            Par::Seq,
+            DENSE_PAR,
         ));
         lu_solve::solve_in_place(
             self.lu.as_ref(),
             self.lu.as_ref(),
             perm,
             rhs.as_mut(),
-            Par::Seq,
+            DENSE_PAR,
             MemStack::new(&mut mem),
         );
     }

@@ -5,7 +5,7 @@
 //! coupled displacements. With K positive definite each multiplier pivot is then a
 //! (negative) Schur complement, never zero (shared/design/dependencies.md).
 
-use crate::assembly::matrix::SparseMatrix;
+use crate::assembly::matrix::{group_by_key, SparseMatrix};
 use crate::error::{Error, Result};
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
@@ -169,30 +169,17 @@ impl OrderedLdlt {
         for (i, &p) in fwd.iter().enumerate() {
             inv[p] = i;
         }
-        // pattern of P A Pᵀ (lower): entry (r, c) of A goes to (inv r, inv c) if inv r ≥ inv c;
-        // built by counting (no per-column allocations), each column then sorted
-        let mut col_ptr = vec![0usize; n + 1];
-        for c in 0..n {
-            for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
-                if inv[r] >= inv[c] {
-                    col_ptr[inv[c] + 1] += 1;
-                }
-            }
-        }
-        for j in 0..n {
-            col_ptr[j + 1] += col_ptr[j];
-        }
-        let mut fill = col_ptr.clone();
-        let mut entries = vec![(0usize, 0usize); col_ptr[n]];
-        for c in 0..n {
-            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
-                let (ir, ic) = (inv[a.row_idx[p]], inv[c]);
-                if ir >= ic {
-                    entries[fill[ic]] = (ir, p);
-                    fill[ic] += 1;
-                }
-            }
-        }
+        // pattern of P A Pᵀ (lower): entry p = (r, c) of A goes to (inv r, inv c) if
+        // inv r ≥ inv c; grouped by column (counting), each column then sorted
+        let (col_ptr, mut entries) = group_by_key(
+            n,
+            (0..n)
+                .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (c, p)))
+                .filter_map(|(c, p)| {
+                    let (ir, ic) = (inv[a.row_idx[p]], inv[c]);
+                    (ir >= ic).then_some((ic, (ir, p)))
+                }),
+        );
         let mut map = vec![NONE; a.nnz()];
         let mut row_idx = Vec::with_capacity(entries.len());
         for j in 0..n {
@@ -212,21 +199,14 @@ impl OrderedLdlt {
         // With the identity ordering faer's analysis reads the upper triangle (whatever the
         // side argument), so it gets the transposed pattern (columns visited in order: each
         // transposed column comes out sorted); the numeric phase reads `permuted`.
-        let mut up_ptr = vec![0usize; n + 1];
-        for &r in &permuted.row_idx {
-            up_ptr[r + 1] += 1;
-        }
-        for j in 0..n {
-            up_ptr[j + 1] += up_ptr[j];
-        }
-        let mut up_fill = up_ptr.clone();
-        let mut up_rows = vec![0usize; permuted.row_idx.len()];
-        for c in 0..n {
-            for &r in &permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]] {
-                up_rows[up_fill[r]] = c;
-                up_fill[r] += 1;
-            }
-        }
+        let (up_ptr, up_rows) = group_by_key(
+            n,
+            (0..n).flat_map(|c| {
+                permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]]
+                    .iter()
+                    .map(move |&r| (r, c))
+            }),
+        );
         let upper = SymbolicSparseColMatRef::new_checked(n, n, &up_ptr, None, &up_rows);
         let symbolic = factorize_symbolic_cholesky(
             upper,

@@ -1,7 +1,8 @@
 //! Sparse direct solves with faer: Cholesky (LLᵀ) for symmetric positive definite systems,
 //! for contact saddle-point systems the condensation on the contact interface
-//! (`interface.rs`) or LDLᵀ with a constrained ordering, LU otherwise. The symbolic factorisation is kept and reused while the
-//! pattern is unchanged (compared with a copy of the last pattern).
+//! (`interface.rs`) or LDLᵀ with a constrained ordering, LU otherwise. The symbolic
+//! factorisation is kept and reused while the pattern is unchanged (compared with a copy
+//! of the last pattern).
 
 use super::gmres;
 use super::interface::InterfaceSolver;
@@ -265,9 +266,10 @@ impl LinearSolver {
     /// A x = b by GMRES on the exact matrix, preconditioned by the factorisation: the
     /// interface condensation is exact (GMRES only checks it), the LDLᵀ of a symmetric
     /// approximation (`SaddleLdlt::factor`) is exact for a symmetric tangent and needs a
-    /// few iterations for the contact tangents that are not. If GMRES stalls (a tangent far from symmetric), LU of the exact matrix takes over
-    /// for the solves with this matrix (the next tangent tries GMRES again: a stall is
-    /// usually one friction state, and LU costs several LDLᵀ factorisations).
+    /// few iterations for the contact tangents that are not. If GMRES stalls (a tangent
+    /// far from symmetric), LU of the exact matrix takes over for the solves with this
+    /// matrix (the next tangent tries GMRES again: a stall is usually one friction state,
+    /// and LU costs several LDLᵀ factorisations).
     fn solve_iterative(&mut self, b: &mut [f64]) -> Result<()> {
         let rhs = b.to_vec();
         if !self.factor_current {
