@@ -360,29 +360,25 @@ pub fn solve(
             // slower; B and D lost a factorisation's time on the failed attempt).
             lin.reuse_factor = settings.reuse_factor && it == 0 && last_iterations <= 3;
             let factored = lin.factor(problem.matrix());
+            report.time_factor_s += t.elapsed().as_secs_f64();
+            let solved = factored.and_then(|()| {
+                report.factorizations += 1;
+                for v in r.iter_mut() {
+                    *v = -*v;
+                }
+                let t = std::time::Instant::now();
+                let solved = lin.solve(&mut r);
+                report.time_solve_s += t.elapsed().as_secs_f64();
+                solved
+            });
+            // A (numerically) singular matrix may factorise with tiny pivots: an increment
+            // a million times the model size means a body is free to move.
+            let step_size = r[..lin.n_primal.min(n)]
+                .iter()
+                .fold(0.0f64, |m, v| m.max(v.abs()));
+            let singular = solved.is_err() || step_size > 1e6 * problem.length_scale();
             // A re-solve is a shortcut: if its statuses make the system singular, Newton
             // goes on from the plain iterate it replaced, as without re-solves.
-            if let (Err(_), true, Some(_)) = (&factored, resolve, &before_resolve) {
-                x = before_resolve.take().unwrap();
-                resolve = false;
-                resolves = 0;
-                continue;
-            }
-            if let Err(e) = factored {
-                failure = Some(e.to_string());
-                break;
-            }
-            report.time_factor_s += t.elapsed().as_secs_f64();
-            report.factorizations += 1;
-            for v in r.iter_mut() {
-                *v = -*v;
-            }
-            let t = std::time::Instant::now();
-            let solved = lin.solve(&mut r);
-            report.time_solve_s += t.elapsed().as_secs_f64();
-            let limit = 1e6 * problem.length_scale();
-            let singular =
-                solved.is_err() || r[..lin.n_primal.min(n)].iter().any(|v| v.abs() > limit);
             if let (true, true, Some(_)) = (singular, resolve, &before_resolve) {
                 x = before_resolve.take().unwrap();
                 resolve = false;
@@ -393,13 +389,8 @@ pub fn solve(
                 failure = Some(e.to_string());
                 break;
             }
-            // A (numerically) singular matrix may factorise with tiny pivots: an increment
-            // a million times the model size means a body is free to move.
-            let step_size = r[..lin.n_primal.min(n)]
-                .iter()
-                .fold(0.0f64, |m, v| m.max(v.abs()));
             last_size = step_size;
-            if step_size > 1e6 * problem.length_scale() {
+            if singular {
                 failure = Some(format!(
                     "the stiffness matrix is singular (displacement increment {step_size:.1e}): the model has a \
                      rigid-body mode (a body not held by imposed displacements or contact; a body \
