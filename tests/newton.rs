@@ -57,7 +57,7 @@ fy = -0.5
     // above round-off (1e-10) must show log r_{k+1} / log r_k >= 1.8 (2 is quadratic).
     let pair = (0..r.len() - 1)
         .rev()
-        .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-10)
+        .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-10 && !report.steps[0].iterations[k].chord)
         .expect("an iteration in the asymptotic range");
     let order = r[pair + 1].ln() / r[pair].ln();
     println!(
@@ -66,4 +66,66 @@ fy = -0.5
         r[pair + 1]
     );
     assert!(order >= 1.8, "order {order}: {r:?}");
+}
+
+/// Chord steps (the last factorisation reused near convergence) reach the same state as
+/// full Newton to the tolerance, with fewer factorisations, and each one lowers the
+/// residual.
+#[test]
+fn chord_steps_converge_to_the_newton_state_with_fewer_factorisations() {
+    let text = r#"
+[mesh]
+generator = "rectangle"
+width = 10.0
+height = 1.0
+nx = 20
+ny = 2
+cell = "Quad8"
+[model]
+kinematics = "large"
+[[material]]
+group = "Body"
+E = 1000.0
+nu = 0.3
+[[displacement]]
+group = "Left"
+dx = 0.0
+dy = 0.0
+[[force]]
+group = "TopRight"
+fy = -0.5
+"#;
+    let case: CaseFile = toml::from_str(text).unwrap();
+    let mesh = build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
+    let tip = mesh.single_node("TopRight").unwrap();
+    let run = |chord_steps: bool| {
+        let mut p = build_problem(&case, &mesh).unwrap();
+        let settings = NewtonSettings {
+            steps: 2,
+            tolerance: 1e-8,
+            max_iterations: 30,
+            chord_steps,
+            ..Default::default()
+        };
+        let report = solve(&mut p, &settings, Method::Cholesky).unwrap();
+        (p.u[2 * tip + 1], report)
+    };
+    let (exact, newton) = run(false);
+    let (chord, with_chords) = run(true);
+    let mut chords = 0;
+    for s in &with_chords.steps {
+        let r: Vec<f64> = s.iterations.iter().map(|i| i.relative_residual).collect();
+        println!("residuals {r:?}");
+        for (k, it) in s.iterations.iter().enumerate().filter(|(_, i)| i.chord) {
+            chords += 1;
+            assert!(r[k + 1] < r[k], "chord step {k} raised the residual: {r:?}");
+        }
+    }
+    println!(
+        "factorisations {} (Newton) vs {} (with {chords} chord steps); tip {exact} vs {chord}",
+        newton.factorizations, with_chords.factorizations
+    );
+    assert!(chords > 0);
+    assert!(with_chords.factorizations < newton.factorizations);
+    assert!((chord / exact - 1.0).abs() < 1e-6, "tip {chord} vs {exact}");
 }

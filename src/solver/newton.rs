@@ -79,6 +79,9 @@ pub struct NewtonSettings {
     pub keep_states: bool,
     /// Saddle-point solves may precondition with an earlier tangent's factorisation.
     pub reuse_factor: bool,
+    /// Near convergence, a correction may reuse the last factorisation (a chord step)
+    /// when it is predicted to reach the tolerance (see `solve`).
+    pub chord_steps: bool,
 }
 
 impl Default for NewtonSettings {
@@ -92,6 +95,7 @@ impl Default for NewtonSettings {
             verbose: false,
             keep_states: false,
             reuse_factor: true,
+            chord_steps: true,
         }
     }
 }
@@ -106,6 +110,9 @@ pub struct Iteration {
     /// Evaluated at the previous iteration's point with the statuses its correction
     /// changed (an active-set re-solve: only the contact terms and the interface redone).
     pub active_set_resolve: bool,
+    /// This iteration's correction reused the last factorisation (a chord step) instead of
+    /// factorising the tangent at this point.
+    pub chord: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -275,19 +282,42 @@ pub fn solve(
         // the plain Newton iterate a re-solve replaced
         let mut before_resolve: Option<Vec<f64>> = None;
         let mut last_size = f64::INFINITY;
+        // c such that a chord step from the current point is predicted to leave c r² (see
+        // below), while the last factorisation is that of this step's last linearisation
+        let mut chord_coefficient: Option<f64> = None;
         for it in 0..=settings.max_iterations {
             let t = std::time::Instant::now();
             // Near convergence (small residual, statuses settled) the tangent is probably not
             // needed: check the residual alone first, and assemble the tangent only if it
             // is not converged after all.
             let prev = step.iterations.last().map(|i| i.relative_residual);
-            let likely_converged = changes == 0 && prev.is_some_and(|p| p < 1e-3);
+            let likely_converged = changes == 0
+                && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-2));
             let mut norms = if resolve {
                 problem.evaluate_contact_tangent(&x, lambda, &mut r)?
             } else {
                 problem.evaluate(&x, lambda, &mut r, !likely_converged)?
             };
-            if likely_converged && !meets_tolerance(&norms) {
+            // Chord step: after a Newton correction from x_{k-1} (residual r_{k-1}) to x_k
+            // (r_k, statuses settled), a correction with the tangent of x_{k-1} leaves about
+            // 2 r_k² / r_{k-1} (the tangent moved by O(|x_k − x_{k-1}|) ~ r_{k-1}, the
+            // correction is ~ r_k); after a chord step from r_{k-1} to r_k, about
+            // r_k² / r_{k-1} (the same contraction again). When that is below the
+            // tolerance (after one chord step, or a second one), the factorisation at hand
+            // serves: no tangent, no factorisation, one solve (SSNP154: the last corrections
+            // of each load step). Not with friction: its stick/slip switches make the
+            // prediction poor, and a chord step ends at the tolerance where the last Newton
+            // correction goes far below it, and with it the Coulomb condition |t| ≤ μ p.
+            let chord = settings.chord_steps
+                && !backtracking
+                && !resolve
+                && changes == 0
+                && !meets_tolerance(&norms)
+                && chord_coefficient.is_some_and(|c| {
+                    let r1 = c * norms.relative().powi(2);
+                    r1.min(r1 * r1 / norms.relative()) <= settings.tolerance
+                });
+            if likely_converged && !meets_tolerance(&norms) && !chord {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
             // Backtracking: a full correction that raised the residual without changing any
@@ -310,10 +340,13 @@ pub fn solve(
                 relative_residual: rel,
                 status_changes: 0,
                 active_set_resolve: resolve,
+                chord,
             });
             if settings.verbose {
                 let note = if resolve {
                     "  (same point, new contact statuses)"
+                } else if chord {
+                    "  (chord step: last factorisation)"
                 } else {
                     ""
                 };
@@ -359,10 +392,14 @@ pub fn solve(
             // that needed many, change it more than GMRES recovers cheaply (SSNP154 F: 20 %
             // slower; B and D lost a factorisation's time on the failed attempt).
             lin.reuse_factor = settings.reuse_factor && it == 0 && last_iterations <= 3;
-            let factored = lin.factor(problem.matrix());
+            let factored = if chord {
+                Ok(())
+            } else {
+                lin.factor(problem.matrix())
+            };
             report.time_factor_s += t.elapsed().as_secs_f64();
             let solved = factored.and_then(|()| {
-                report.factorizations += 1;
+                report.factorizations += usize::from(!chord);
                 for v in r.iter_mut() {
                     *v = -*v;
                 }
@@ -399,6 +436,7 @@ pub fn solve(
                 ));
                 break;
             }
+            chord_coefficient = Some(if chord { 1.0 } else { 2.0 } / rel);
             let x_lin = x.clone();
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
