@@ -6,11 +6,6 @@
 //!
 //! Run: `cargo bench --bench history`
 
-// mimalloc keeps and reuses the memory it maps: glibc's malloc returns large blocks to the
-// system and page-faults them in again (SSNP154 B: 24 000 page faults per run, 330 here).
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 use std::path::Path;
 use std::time::Instant;
 

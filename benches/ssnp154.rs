@@ -4,11 +4,6 @@
 //!
 //! Run: `cargo bench --bench ssnp154`
 
-// mimalloc keeps and reuses the memory it maps: glibc's malloc returns large blocks to the
-// system and page-faults them in again (SSNP154 B: 24 000 page faults per run, 330 here).
-#[global_allocator]
-static GLOBAL: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 use std::path::Path;
 use std::time::Instant;
 use tribo::case::{self, ssnp154};
