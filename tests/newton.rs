@@ -116,7 +116,7 @@ fy = -0.5
     for s in &with_chords.steps {
         let r: Vec<f64> = s.iterations.iter().map(|i| i.relative_residual).collect();
         println!("residuals {r:?}");
-        for (k, it) in s.iterations.iter().enumerate().filter(|(_, i)| i.chord) {
+        for (k, _) in s.iterations.iter().enumerate().filter(|(_, i)| i.chord) {
             chords += 1;
             assert!(r[k + 1] < r[k], "chord step {k} raised the residual: {r:?}");
         }
