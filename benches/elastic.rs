@@ -91,7 +91,7 @@ fn main() {
         p.loading.forces_at(1.0, &mut fext);
         p.asm.dofs.reduce(&fext, &mut rhs);
         let t3 = Instant::now();
-        lin.solve(&mut rhs).unwrap();
+        lin.solve(&p.asm.matrix, &mut rhs).unwrap();
         let t_solve = t3.elapsed().as_secs_f64();
         println!(
             "{:>9} {:>10} {:>9.3} {:>10.3} {:>10.3} {:>10.3} {:>9.3} {:>10.3} {:>10.0}",

@@ -38,15 +38,17 @@ pub struct OrderedLdlt {
 
 const NONE: usize = usize::MAX;
 
-/// AMD on the graph `adj` (each list sorted, holding its own index). Unknowns with the
-/// same adjacency (the two dofs of a node) are ordered together: AMD runs on the graph of
-/// these groups, about four times smaller. Returns the elimination order.
-fn grouped_amd(adj: &[Vec<usize>]) -> Result<Vec<usize>> {
-    let np = adj.len();
+/// AMD on the graph whose vertex j has the sorted neighbours `idx[ptr[j]..ptr[j + 1]]`
+/// (itself included). Unknowns with the same adjacency (the two dofs of a node) are
+/// ordered together: AMD runs on the graph of these groups, about four times smaller.
+/// Returns the elimination order.
+fn grouped_amd(ptr: &[usize], idx: &[usize]) -> Result<Vec<usize>> {
+    let np = ptr.len() - 1;
+    let list = |j: usize| &idx[ptr[j]..ptr[j + 1]];
     let mut group_of = vec![0usize; np];
     let mut groups: Vec<usize> = vec![]; // first unknown of each group
     for j in 0..np {
-        if j > 0 && adj[j] == adj[j - 1] {
+        if j > 0 && list(j) == list(j - 1) {
             group_of[j] = group_of[j - 1];
         } else {
             group_of[j] = groups.len();
@@ -54,20 +56,19 @@ fn grouped_amd(adj: &[Vec<usize>]) -> Result<Vec<usize>> {
         }
     }
     let ng = groups.len();
-    let mut col_ptr = vec![0usize];
-    let mut rows = vec![];
+    // Groups are runs of consecutive unknowns, so a sorted list maps to sorted group ids:
+    // only the repeats go.
+    let mut col_ptr = Vec::with_capacity(ng + 1);
+    col_ptr.push(0);
+    let mut rows = Vec::with_capacity(idx.len() / 2);
     for &j in &groups {
         let start = rows.len();
-        rows.extend(adj[j].iter().map(|&i| group_of[i]));
-        rows[start..].sort_unstable();
-        let mut k = start;
-        for q in start..rows.len() {
-            if q == start || rows[q] != rows[k - 1] {
-                rows[k] = rows[q];
-                k += 1;
+        for &i in list(j) {
+            let g = group_of[i];
+            if rows.len() == start || rows[rows.len() - 1] != g {
+                rows.push(g);
             }
         }
-        rows.truncate(k);
         col_ptr.push(rows.len());
     }
     let sym = SymbolicSparseColMatRef::new_checked(ng, ng, &col_ptr, None, &rows);
@@ -93,21 +94,30 @@ fn grouped_amd(adj: &[Vec<usize>]) -> Result<Vec<usize>> {
 /// AMD order of the leading `np` unknowns of `a` on their own graph (the other unknowns
 /// ignored), for an ordering that places the others last.
 pub fn leading_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
-    let adj: Vec<Vec<usize>> = (0..np)
-        .map(|c| {
-            let mut list: Vec<usize> = a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]]
-                .iter()
-                .copied()
-                .filter(|&r| r < np)
-                .collect();
-            if list.binary_search(&c).is_err() {
-                list.push(c);
-                list.sort_unstable();
+    let mut ptr = Vec::with_capacity(np + 1);
+    ptr.push(0);
+    let mut idx = Vec::with_capacity(a.col_ptr[np.min(a.n)]);
+    for c in 0..np {
+        // sorted rows below np, with the diagonal merged in
+        let mut diagonal = false;
+        for &r in &a.row_idx[a.col_ptr[c]..a.col_ptr[c + 1]] {
+            if r >= np {
+                continue;
             }
-            list
-        })
-        .collect();
-    grouped_amd(&adj)
+            if !diagonal && r >= c {
+                if r != c {
+                    idx.push(c);
+                }
+                diagonal = true;
+            }
+            idx.push(r);
+        }
+        if !diagonal {
+            idx.push(c);
+        }
+        ptr.push(idx.len());
+    }
+    grouped_amd(&ptr, &idx)
 }
 
 /// The constrained ordering (forward permutation) of `a` whose first `np` unknowns are
@@ -139,7 +149,11 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
         list.sort_unstable();
         list.dedup();
     }
-    let perm = grouped_amd(&adj)?;
+    let mut ptr = vec![0];
+    for list in &adj {
+        ptr.push(ptr.last().unwrap() + list.len());
+    }
+    let perm = grouped_amd(&ptr, &adj.concat())?;
     let mut perm_inv = vec![0usize; np];
     for (i, &j) in perm.iter().enumerate() {
         perm_inv[j] = i;

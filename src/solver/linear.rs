@@ -71,9 +71,7 @@ pub struct LinearSolver {
     lu: Option<Lu<usize, f64>>,
     /// Number of symbolic factorisations done (for reports and tests of reuse).
     pub symbolic_count: usize,
-    /// SaddleLdlt: the matrix itself (for refinement), with the position of each entry's
-    /// transpose.
-    exact: SparseMatrix,
+    /// SaddleLdlt: the position of each entry's transpose.
     transpose: Vec<usize>,
     /// GMRES iterations done in the last solve (SaddleLdlt).
     pub gmres_iterations: usize,
@@ -87,7 +85,7 @@ pub struct LinearSolver {
     /// SaddleLdlt: keep the last numeric factorisation as the preconditioner of the next
     /// matrices while GMRES converges fast with it (set by the caller).
     pub reuse_factor: bool,
-    /// The numeric LDLᵀ is of the current `exact` matrix (not of an earlier one).
+    /// The numeric LDLᵀ is of the matrix last given to `factor` (not of an earlier one).
     factor_current: bool,
     /// The next `factor` must factorise (GMRES was slow with the old factorisation).
     refresh: bool,
@@ -111,7 +109,6 @@ impl LinearSolver {
             llt: None,
             lu: None,
             symbolic_count: 0,
-            exact: SparseMatrix::default(),
             transpose: vec![],
             gmres_iterations: 0,
             lu_fallback: false,
@@ -181,11 +178,6 @@ impl LinearSolver {
                     self.ldlt = Some(Factorisation::new(a, self.n_primal, &self.transpose)?);
                     self.symbolic_count += 1;
                 }
-                if !fresh && self.exact.nnz() == a.nnz() {
-                    self.exact.values.copy_from_slice(&a.values); // same pattern
-                } else {
-                    self.exact.clone_from(a);
-                }
                 if self.skip_reuse > 0 {
                     self.skip_reuse -= 1;
                     self.refresh = true;
@@ -236,8 +228,41 @@ impl LinearSolver {
             .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1));
     }
 
-    /// Solves in place with the last factorisation; fails on a non-finite result.
-    pub fn solve(&mut self, b: &mut [f64]) -> Result<()> {
+    /// Solves a x = b in place, `a` the matrix last given to `factor`; fails on a
+    /// non-finite result.
+    pub fn solve(&mut self, a: &SparseMatrix, b: &mut [f64]) -> Result<()> {
+        match self.method {
+            Method::SaddleLdlt if !self.lu_fallback && !self.stalled => {
+                self.solve_iterative(a, b)?
+            }
+            _ => self.solve_with_factorisation(b),
+        }
+        finite(b)
+    }
+
+    /// Whether the last factorisation is of the matrix last given to `factor` and solves it
+    /// exactly by itself (Cholesky, LU, the condensation on the contact interface; not the
+    /// LDLᵀ of a symmetric approximation).
+    pub fn factorisation_is_exact(&self) -> bool {
+        match self.method {
+            Method::Cholesky | Method::Lu => true,
+            Method::SaddleLdlt => {
+                self.lu_fallback
+                    || self.stalled
+                    || (self.factor_current
+                        && matches!(self.ldlt, Some(Factorisation::Interface(_))))
+            }
+        }
+    }
+
+    /// Solves in place with the last factorisation alone (for a chord step: a correction
+    /// with the matrix it was made of, while the system has moved on).
+    pub fn solve_factored(&mut self, b: &mut [f64]) -> Result<()> {
+        self.solve_with_factorisation(b);
+        finite(b)
+    }
+
+    fn solve_with_factorisation(&mut self, b: &mut [f64]) {
         let n = b.len();
         match self.method {
             Method::Cholesky => self
@@ -245,17 +270,21 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt if self.lu_fallback || self.stalled => self.solve_lu(b),
-            Method::Lu => self.solve_lu(b),
-            Method::SaddleLdlt => self.solve_iterative(b)?,
+            Method::SaddleLdlt if !self.lu_fallback && !self.stalled => {
+                self.ldlt.as_mut().expect("factor before solve").solve(b)
+            }
+            _ => self.solve_lu(b),
         }
-        if b.iter().any(|v| !v.is_finite()) {
-            return Err(Error::solve(
-                "the linear solve produced non-finite values (singular system)",
-            ));
-        }
-        Ok(())
     }
+}
+
+fn finite(b: &[f64]) -> Result<()> {
+    if b.iter().any(|v| !v.is_finite()) {
+        return Err(Error::solve(
+            "the linear solve produced non-finite values (singular system)",
+        ));
+    }
+    Ok(())
 }
 
 /// GMRES iterations allowed with a reused saddle-point LDLᵀ (about the cost of one
@@ -270,7 +299,7 @@ impl LinearSolver {
     /// far from symmetric), LU of the exact matrix takes over for the solves with this
     /// matrix (the next tangent tries GMRES again: a stall is usually one friction state,
     /// and LU costs several LDLᵀ factorisations).
-    fn solve_iterative(&mut self, b: &mut [f64]) -> Result<()> {
+    fn solve_iterative(&mut self, exact: &SparseMatrix, b: &mut [f64]) -> Result<()> {
         let rhs = b.to_vec();
         if !self.factor_current {
             // The factorisation of an earlier tangent as preconditioner: a few GMRES
@@ -279,7 +308,6 @@ impl LinearSolver {
             // past half of it the next matrix is factorised.
             let f = self.ldlt.as_mut().expect("factor before solve");
             let budget = f.reuse_budget();
-            let exact = &self.exact;
             f.solve(b);
             let reused = gmres::solve(
                 &mut |v, out| exact.mul_vec(v, out),
@@ -305,15 +333,14 @@ impl LinearSolver {
                     self.numeric_count += 1;
                     self.factor_current = true;
                     let f = self.ldlt.as_mut().expect("factor before solve");
-                    if f.factor(&self.exact, &self.transpose).is_err() {
-                        return self.solve_by_lu(&rhs, b);
+                    if f.factor(exact, &self.transpose).is_err() {
+                        return self.solve_by_lu(exact, &rhs, b);
                     }
                     b.copy_from_slice(&rhs);
                 }
             }
         }
         let f = self.ldlt.as_mut().expect("factor before solve");
-        let exact = &self.exact;
         f.solve(b); // start from M⁻¹ b: enough when the tangent is symmetric
         let result = gmres::solve(
             &mut |v, out| exact.mul_vec(v, out),
@@ -329,19 +356,16 @@ impl LinearSolver {
                 self.gmres_iterations = its;
                 Ok(())
             }
-            Err(_) => self.solve_by_lu(&rhs, b),
+            Err(_) => self.solve_by_lu(exact, &rhs, b),
         }
     }
 
     /// LU of the current matrix solves `rhs` into `b` (GMRES stalled or the symmetric part
     /// has a zero pivot); the next matrix tries LDLᵀ and GMRES again.
-    fn solve_by_lu(&mut self, rhs: &[f64], b: &mut [f64]) -> Result<()> {
+    fn solve_by_lu(&mut self, exact: &SparseMatrix, rhs: &[f64], b: &mut [f64]) -> Result<()> {
         self.stalled = true;
         self.gmres_stalls += 1;
-        let exact = std::mem::take(&mut self.exact);
-        let factored = self.factor_lu(&exact);
-        self.exact = exact;
-        factored?;
+        self.factor_lu(exact)?;
         b.copy_from_slice(rhs);
         self.solve_lu(b);
         Ok(())
@@ -403,7 +427,7 @@ mod tests {
                 let x: Vec<f64> = (0..50).map(|i| (i as f64).sin()).collect();
                 let mut b = vec![0.0; 50];
                 a.mul_vec(&x, &mut b);
-                s.solve(&mut b).unwrap();
+                s.solve(&a, &mut b).unwrap();
                 for i in 0..50 {
                     assert!((b[i] - x[i]).abs() < 1e-12);
                 }

@@ -177,7 +177,7 @@ fn tangent_predictor(
     for (v, v0) in r.iter_mut().zip(&r0) {
         *v = -(*v - v0) / eps;
     }
-    if lin.solve(&mut r).is_err() {
+    if lin.solve(problem.matrix(), &mut r).is_err() {
         return Ok(None);
     }
     Ok(Some(x0.iter().zip(&r).map(|(a, b)| a + b).collect()))
@@ -310,6 +310,7 @@ pub fn solve(
             // correction goes far below it, and with it the Coulomb condition |t| ≤ μ p.
             let chord = settings.chord_steps
                 && !backtracking
+                && lin.factorisation_is_exact()
                 && !resolve
                 && changes == 0
                 && !meets_tolerance(&norms)
@@ -404,7 +405,12 @@ pub fn solve(
                     *v = -*v;
                 }
                 let t = std::time::Instant::now();
-                let solved = lin.solve(&mut r);
+                // a chord step solves with the factorisation at hand alone
+                let solved = if chord {
+                    lin.solve_factored(&mut r)
+                } else {
+                    lin.solve(problem.matrix(), &mut r)
+                };
                 report.time_solve_s += t.elapsed().as_secs_f64();
                 solved
             });
