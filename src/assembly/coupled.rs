@@ -24,8 +24,10 @@ impl Triplets {
 #[derive(Default)]
 pub struct CoupledMatrix {
     pub matrix: SparseMatrix,
-    /// Position in `matrix.values` of each value of the solid matrix.
+    /// Position in `matrix.values` of each value of the solid matrix (one solid value per
+    /// position), and the positions no solid value lands on.
     solid_map: Vec<usize>,
+    non_solid: Vec<usize>,
     /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
     key: Vec<(usize, usize)>,
     /// The (row, col) sequence of the last triplets and, for each triplet, its targets
@@ -76,9 +78,11 @@ impl CoupledMatrix {
                 m.values[q] = v;
             }
         } else {
-            m.values.fill(0.0);
-            for (p, &q) in self.solid_map.iter().enumerate() {
-                m.values[q] += solid.values[p];
+            for &q in &self.non_solid {
+                m.values[q] = 0.0;
+            }
+            for (&q, &v) in self.solid_map.iter().zip(&solid.values) {
+                m.values[q] = v;
             }
             self.solid_generation = Some(generation);
         }
@@ -209,6 +213,12 @@ impl CoupledMatrix {
             col_ptr,
             row_idx,
         };
+        let nnz = self.matrix.nnz();
+        let mut solid_there = vec![false; nnz];
+        for &q in &solid_map {
+            solid_there[q] = true;
+        }
+        self.non_solid = (0..nnz).filter(|&q| !solid_there[q]).collect();
         self.solid_map = solid_map;
         self.rebuilds += 1;
     }

@@ -310,7 +310,7 @@ impl LinearSolver {
             let budget = f.reuse_budget();
             f.solve(b);
             let reused = gmres::solve(
-                &mut |v, out| exact.mul_vec(v, out),
+                &mut |v, out| exact.mul_vec_par(v, out),
                 &mut |v| f.solve(v),
                 &rhs,
                 b,
@@ -343,7 +343,7 @@ impl LinearSolver {
         let f = self.ldlt.as_mut().expect("factor before solve");
         f.solve(b); // start from M⁻¹ b: enough when the tangent is symmetric
         let result = gmres::solve(
-            &mut |v, out| exact.mul_vec(v, out),
+            &mut |v, out| exact.mul_vec_par(v, out),
             &mut |v| f.solve(v),
             &rhs,
             b,
