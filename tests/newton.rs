@@ -1,13 +1,12 @@
 //! Newton converges quadratically on a geometrically nonlinear problem: a slender cantilever
-//! (large kinematics) bent by a tip load in one step.
+//! (large kinematics) bent by a tip load in one step; chord steps reach the same state.
 
 use tribo::case::{build_mesh, build_problem, schema::CaseFile};
 use tribo::solver::linear::Method;
 use tribo::solver::newton::{solve, NewtonSettings};
 
-#[test]
-fn newton_converges_quadratically_with_large_kinematics() {
-    let text = r#"
+/// A slender cantilever (10 × 1, Quad8) clamped on the left, a tip load down.
+const CANTILEVER: &str = r#"
 [mesh]
 generator = "rectangle"
 width = 10.0
@@ -29,7 +28,10 @@ dy = 0.0
 group = "TopRight"
 fy = -0.5
 "#;
-    let case: CaseFile = toml::from_str(text).unwrap();
+
+#[test]
+fn newton_converges_quadratically_with_large_kinematics() {
+    let case: CaseFile = toml::from_str(CANTILEVER).unwrap();
     let mesh = build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
     let mut p = build_problem(&case, &mesh).unwrap();
     let settings = NewtonSettings {
@@ -73,29 +75,7 @@ fy = -0.5
 /// residual.
 #[test]
 fn chord_steps_converge_to_the_newton_state_with_fewer_factorisations() {
-    let text = r#"
-[mesh]
-generator = "rectangle"
-width = 10.0
-height = 1.0
-nx = 20
-ny = 2
-cell = "Quad8"
-[model]
-kinematics = "large"
-[[material]]
-group = "Body"
-E = 1000.0
-nu = 0.3
-[[displacement]]
-group = "Left"
-dx = 0.0
-dy = 0.0
-[[force]]
-group = "TopRight"
-fy = -0.5
-"#;
-    let case: CaseFile = toml::from_str(text).unwrap();
+    let case: CaseFile = toml::from_str(CANTILEVER).unwrap();
     let mesh = build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
     let tip = mesh.single_node("TopRight").unwrap();
     let run = |chord_steps: bool| {
