@@ -231,13 +231,18 @@ impl LinearSolver {
     /// Solves a x = b in place, `a` the matrix last given to `factor`; fails on a
     /// non-finite result.
     pub fn solve(&mut self, a: &SparseMatrix, b: &mut [f64]) -> Result<()> {
-        match self.method {
-            Method::SaddleLdlt if !self.lu_fallback && !self.stalled => {
-                self.solve_iterative(a, b)?
-            }
-            _ => self.solve_with_factorisation(b),
+        if self.method == Method::SaddleLdlt && !self.lu_solves() {
+            self.solve_iterative(a, b)?
+        } else {
+            self.solve_with_factorisation(b)
         }
         finite(b)
+    }
+
+    /// SaddleLdlt: solves go through LU (no usable symmetric part, or GMRES stalled on
+    /// the current matrix).
+    fn lu_solves(&self) -> bool {
+        self.lu_fallback || self.stalled
     }
 
     /// Whether the last factorisation is of the matrix last given to `factor` and solves it
@@ -247,8 +252,7 @@ impl LinearSolver {
         match self.method {
             Method::Cholesky | Method::Lu => true,
             Method::SaddleLdlt => {
-                self.lu_fallback
-                    || self.stalled
+                self.lu_solves()
                     || (self.factor_current
                         && matches!(self.ldlt, Some(Factorisation::Interface(_))))
             }
@@ -270,7 +274,7 @@ impl LinearSolver {
                 .as_ref()
                 .expect("factor before solve")
                 .solve_in_place(faer::MatMut::from_column_major_slice_mut(b, n, 1)),
-            Method::SaddleLdlt if !self.lu_fallback && !self.stalled => {
+            Method::SaddleLdlt if !self.lu_solves() => {
                 self.ldlt.as_mut().expect("factor before solve").solve(b)
             }
             _ => self.solve_lu(b),

@@ -308,17 +308,18 @@ pub fn solve(
             // of each load step). Not with friction: its stick/slip switches make the
             // prediction poor, and a chord step ends at the tolerance where the last Newton
             // correction goes far below it, and with it the Coulomb condition |t| ≤ μ p.
+            let met = meets_tolerance(&norms);
             let chord = settings.chord_steps
                 && !backtracking
                 && lin.factorisation_is_exact()
                 && !resolve
                 && changes == 0
-                && !meets_tolerance(&norms)
+                && !met
                 && chord_coefficient.is_some_and(|c| {
                     let r1 = c * norms.relative().powi(2);
                     r1.min(r1 * r1 / norms.relative()) <= settings.tolerance
                 });
-            if likely_converged && !meets_tolerance(&norms) && !chord {
+            if likely_converged && !met && !chord {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
             // Backtracking: a full correction that raised the residual without changing any
