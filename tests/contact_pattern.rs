@@ -2,37 +2,14 @@
 //! of the slave surface within reach of the master; a point that comes within reach is
 //! paired at the next status update and its couplings join the pattern.
 
+mod common;
+
 use tribo::assembly::dofs::Role;
 use tribo::case::{build_pairs, build_problem, schema::CaseFile};
 use tribo::contact::problem::ContactProblem;
 use tribo::mesh::generate::rectangle;
-use tribo::mesh::{CellKind, Mesh, MeshBuilder};
+use tribo::mesh::{CellKind, Mesh};
 use tribo::solver::newton::Nonlinear;
-
-const CASE: &str = r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
-[[material]]
-group = "LowerBody"
-E = 1000.0
-nu = 0.3
-[[material]]
-group = "UpperBody"
-E = 1000.0
-nu = 0.3
-[[displacement]]
-group = "LowerBottom"
-dx = 0.0
-dy = 0.0
-[[contact]]
-slave = "UpperBottom"
-master = "LowerTop"
-formulation = "point-to-segment"
-"#;
 
 /// Slave nodes (on y = 0, upper body) whose displacements share an entry with a multiplier.
 fn coupled_slave_nodes(p: &ContactProblem, mesh: &Mesh, first_upper: usize) -> Vec<usize> {
@@ -63,12 +40,12 @@ fn pattern_holds_the_slave_surface_within_reach_only() {
     // nodes at x ≈ 4.83 and 5.5 are out of reach
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([1.5, 0.0], 4.0, 0.8, 6, 2, CellKind::Quad4, 0.0).unwrap();
-    let mut b = MeshBuilder::new("offset blocks");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    let mesh = b.finish().unwrap();
+    let mesh = common::bodies(&[("Lower", &lower), ("Upper", &upper)]);
     let first_upper = lower.num_nodes();
-    let case: CaseFile = toml::from_str(CASE).unwrap();
+    let text = common::case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)])
+        + common::HELD_BELOW_CONTACT_ABOVE
+        + "formulation = \"point-to-segment\"\n";
+    let case: CaseFile = toml::from_str(&text).unwrap();
     let solid = build_problem(&case, &mesh).unwrap();
     let pairs = build_pairs(&case, &mesh).unwrap();
     let mut p = ContactProblem::new(solid, pairs);

@@ -2,37 +2,20 @@
 //! on two elastic blocks pressed together with non-matching interface meshes, linear
 //! (Seg2) and quadratic (Seg3) surfaces, large kinematics, every point active.
 
+mod common;
+
 use tribo::case::{build_pairs, build_problem, schema::CaseFile};
 use tribo::contact::problem::ContactProblem;
 use tribo::mesh::generate::rectangle;
-use tribo::mesh::{CellKind, MeshBuilder};
+use tribo::mesh::CellKind;
 use tribo::solver::newton::Nonlinear;
 
-const CASE: &str = r#"
-[mesh]
-generator = "rectangle"
-width = 1.0
-height = 1.0
-nx = 1
-ny = 1
-[model]
-kinematics = "large"
-[[material]]
-group = "LowerBody"
-E = 1000.0
-nu = 0.3
-[[material]]
-group = "UpperBody"
-E = 3000.0
-nu = 0.25
-[[displacement]]
-group = "LowerBottom"
-dx = 0.0
-dy = 0.0
-[[contact]]
-slave = "UpperBottom"
-master = "LowerTop"
-"#;
+/// Two blocks (the upper one stiffer), large kinematics, in contact.
+fn case_text() -> String {
+    common::case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 3000.0, 0.25)])
+        + "[model]\nkinematics = \"large\"\n"
+        + common::HELD_BELOW_CONTACT_ABOVE
+}
 
 fn check(kind: CellKind, formulation: &str, tolerance: f64) {
     check_with(kind, formulation, "", tolerance)
@@ -42,11 +25,8 @@ fn check(kind: CellKind, formulation: &str, tolerance: f64) {
 fn check_with(kind: CellKind, formulation: &str, extra: &str, tolerance: f64) {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, kind, 0.0).unwrap();
     let upper = rectangle([0.15, 0.0], 1.7, 0.8, 4, 2, kind, 0.0).unwrap();
-    let mut b = MeshBuilder::new("two blocks");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    let mesh = b.finish().unwrap();
-    let text = CASE.replace(
+    let mesh = common::bodies(&[("Lower", &lower), ("Upper", &upper)]);
+    let text = case_text().replace(
         "master = \"LowerTop\"",
         &format!("master = \"LowerTop\"\nformulation = \"{formulation}\"\n{extra}"),
     );

@@ -83,6 +83,18 @@ pub fn case_head(materials: &[(&str, f64, f64)]) -> String {
     s
 }
 
+/// The tail of a two-body case: the lower body held at its bottom, the upper body's bottom
+/// (slave) in contact with the lower body's top (master); more keys of the pair may follow.
+pub const HELD_BELOW_CONTACT_ABOVE: &str = r#"
+[[displacement]]
+group = "LowerBottom"
+dx = 0.0
+dy = 0.0
+[[contact]]
+slave = "UpperBottom"
+master = "LowerTop"
+"#;
+
 /// Bodies side by side in one mesh, their groups prefixed with the given names.
 pub fn bodies(parts: &[(&str, &Mesh)]) -> Mesh {
     let mut b = tribo::mesh::MeshBuilder::new("bodies");
