@@ -215,3 +215,49 @@ fn mortar_pressure_on_the_linear_mesh_follows_hertz() {
     assert!(inside >= 4, "the contact zone holds several slave nodes");
     assert!(worst < 0.03, "deviation {:.2} % of p0", 100.0 * worst);
 }
+
+/// With friction, corrections far from the tolerance may keep the bodies' tangent and
+/// factorisations with current contact terms (frozen bodies): on D they reach the state of
+/// full Newton corrections to the tolerance, with fewer factorisations of the bodies.
+#[test]
+fn frozen_body_corrections_reach_the_newton_state() {
+    use tribo::contact::problem::ContactProblem;
+    use tribo::solver::linear::Method;
+    use tribo::solver::newton::{self, NewtonSettings};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/ssnp154/d.toml");
+    let (c, dir) = case::load(&path).unwrap();
+    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
+    let b = mesh.single_node("B").unwrap();
+    let run = |frozen_bodies: bool| {
+        let solid = case::build_problem(&c, &mesh).unwrap();
+        let mut p = ContactProblem::new(solid, case::build_pairs(&c, &mesh).unwrap());
+        let settings = NewtonSettings {
+            steps: c.solver.steps,
+            tolerance: c.solver.tolerance,
+            max_iterations: c.solver.max_iterations,
+            frozen_bodies,
+            ..Default::default()
+        };
+        let report = newton::solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
+        // corrections that factorised the bodies: neither re-solves nor frozen ones (the
+        // last iteration of a step only checks convergence)
+        let (mut full, mut frozen) = (0, 0);
+        for s in &report.steps {
+            for i in &s.iterations[..s.iterations.len() - 1] {
+                frozen += usize::from(i.frozen_bodies);
+                full += usize::from(!i.frozen_bodies && !i.active_set_resolve && !i.chord);
+            }
+        }
+        (p.solid.u[2 * b + 1], full, frozen)
+    };
+    let (dy_newton, full_newton, none) = run(false);
+    let (dy, full, frozen) = run(true);
+    println!("DY_B {dy} vs {dy_newton}; body factorisations {full} ({frozen} frozen corrections) vs {full_newton}");
+    assert_eq!(none, 0);
+    assert!(frozen > 0);
+    assert!(full < full_newton);
+    assert!(
+        (dy / dy_newton - 1.0).abs() < 1e-6,
+        "DY_B {dy} vs {dy_newton}"
+    );
+}

@@ -82,6 +82,9 @@ pub struct NewtonSettings {
     /// Near convergence, a correction may reuse the last factorisation (a chord step)
     /// when it is predicted to reach the tolerance (see `solve`).
     pub chord_steps: bool,
+    /// With friction, while far from the tolerance, corrections may keep the bodies'
+    /// tangent and factorisations with current contact terms (see `solve`).
+    pub frozen_bodies: bool,
 }
 
 impl Default for NewtonSettings {
@@ -96,6 +99,7 @@ impl Default for NewtonSettings {
             keep_states: false,
             reuse_factor: true,
             chord_steps: true,
+            frozen_bodies: true,
         }
     }
 }
@@ -113,6 +117,9 @@ pub struct Iteration {
     /// This iteration's correction reused the last factorisation (a chord step) instead of
     /// factorising the tangent at this point.
     pub chord: bool,
+    /// This iteration's tangent kept the bodies' part (and their factorisations) of an
+    /// earlier iterate; its contact terms are those of this point.
+    pub frozen_bodies: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -152,6 +159,12 @@ impl NewtonSettings {
         }
     }
 }
+
+/// Frozen-body corrections: only from a residual below FROZEN_BELOW, not once the residual is
+/// within FROZEN_FINISH times the tolerance (the last corrections are full Newton ones, so
+/// friction's constraint rows converge as far below the tolerance as they do without).
+const FROZEN_BELOW: f64 = 0.1;
+const FROZEN_FINISH: f64 = 1e3;
 
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
@@ -293,11 +306,29 @@ pub fn solve(
             let prev = step.iterations.last().map(|i| i.relative_residual);
             let likely_converged = changes == 0
                 && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-2));
-            let mut norms = if resolve {
+            // Frozen bodies: while the residual is still far from the tolerance but the
+            // iterate moves little (friction's stick/slip settling), the bodies' tangent and
+            // factorisations are kept and only the contact terms are current.
+            let frozen_candidate = settings.frozen_bodies
+                && backtracking
+                && !resolve
+                && lin.condenses_contact()
+                && prev.is_some_and(|p| p < FROZEN_BELOW);
+            let mut norms = if resolve || frozen_candidate {
                 problem.evaluate_contact_tangent(&x, lambda, &mut r)?
             } else {
                 problem.evaluate(&x, lambda, &mut r, !likely_converged)?
             };
+            // a frozen correction that raised the residual is followed by a full one
+            let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
+            let raised = last_frozen && prev.is_some_and(|p| norms.relative() > p);
+            let mut frozen = frozen_candidate
+                && !raised
+                && !meets_tolerance(&norms)
+                && norms.relative() > FROZEN_FINISH * settings.tolerance;
+            if frozen_candidate && !frozen && !meets_tolerance(&norms) {
+                norms = problem.evaluate(&x, lambda, &mut r, true)?;
+            }
             // Chord step: after a Newton correction from x_{k-1} (residual r_{k-1}) to x_k
             // (r_k, statuses settled), a correction with the tangent of x_{k-1} leaves about
             // 2 r_k² / r_{k-1} (the tangent moved by O(|x_k − x_{k-1}|) ~ r_{k-1}, the
@@ -319,7 +350,7 @@ pub fn solve(
                     let r1 = c * norms.relative().powi(2);
                     r1.min(r1 * r1 / norms.relative()) <= settings.tolerance
                 });
-            if likely_converged && !met && !chord {
+            if likely_converged && !frozen_candidate && !met && !chord {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
             // Backtracking: a full correction that raised the residual without changing any
@@ -328,6 +359,7 @@ pub fn solve(
             if let (Some(dx), Some(p), 0, true) = (&last_dx, prev, changes, backtracking) {
                 let mut alpha = 1.0;
                 while norms.relative() > p && alpha > 0.2 {
+                    frozen = false;
                     alpha *= 0.5;
                     for (xi, d) in x.iter_mut().zip(dx) {
                         *xi -= alpha * d;
@@ -343,12 +375,15 @@ pub fn solve(
                 status_changes: 0,
                 active_set_resolve: resolve,
                 chord,
+                frozen_bodies: frozen,
             });
             if settings.verbose {
                 let note = if resolve {
                     "  (same point, new contact statuses)"
                 } else if chord {
                     "  (chord step: last factorisation)"
+                } else if frozen {
+                    "  (bodies' factorisations kept, contact terms current)"
                 } else {
                     ""
                 };
@@ -443,7 +478,7 @@ pub fn solve(
                 ));
                 break;
             }
-            chord_coefficient = Some(if chord { 1.0 } else { 2.0 } / rel);
+            chord_coefficient = (!frozen).then(|| if chord { 1.0 } else { 2.0 } / rel);
             let x_lin = x.clone();
             for (xi, dx) in x.iter_mut().zip(&r) {
                 *xi += dx;
