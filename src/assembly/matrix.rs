@@ -119,8 +119,9 @@ impl SparseMatrix {
         }
     }
 
+    /// faer's view of the matrix; the checked constructor validates the pattern (a pass
+    /// over it) at each call, so hot loops keep a checked pattern of their own.
     pub fn as_faer(&self) -> SparseColMatRef<'_, usize, f64> {
-        // SAFETY-free construction: the checked constructor validates the pattern once.
         let sym = SymbolicSparseColMatRef::new_checked(
             self.n,
             self.n,

@@ -5,6 +5,7 @@
 //! | `coupled.rs` | solid matrix + contact triplets over extra unknowns, pattern rebuilt on change |
 //! | `dofs.rs` | `DofMap`: free, imposed and linked dofs (elimination) |
 //! | `matrix.rs` | CSC matrix with a fixed pattern, faer view |
+//! | `pattern.rs` | the assembler's pattern and per-cell scatter positions |
 //! | `loads.rs` | nodal forces, edge pressures and tractions |
 //!
 //! The pattern and, per cell, the position of every local entry in the global value array
@@ -16,11 +17,12 @@ pub mod coupled;
 pub mod dofs;
 pub mod loads;
 pub mod matrix;
+mod pattern;
 
 use crate::error::{Error, Result};
 use crate::fem::solid::{residual_tangent, SolidModel, MAX_DOFS};
 use crate::mesh::Mesh;
-use dofs::{DofMap, Role};
+use dofs::DofMap;
 use matrix::SparseMatrix;
 use rayon::prelude::*;
 
@@ -58,105 +60,15 @@ impl Assembler {
         dofs: DofMap,
         lower_only: bool,
     ) -> Result<Self> {
-        let nf = dofs.num_free;
-        // Free unknowns touched by each cell.
-        let mut tmp = vec![];
-        let mut touched_start = vec![0usize];
-        let mut touched = vec![];
-        for &c in &cells {
-            let mut set = vec![];
-            for &n in mesh.cell_nodes(c) {
-                for comp in 0..2 {
-                    dofs.expand_dof(2 * n + comp, &mut tmp);
-                    set.extend(tmp.iter().map(|t| t.0));
-                }
-            }
-            set.sort_unstable();
-            set.dedup();
-            touched.extend_from_slice(&set);
-            touched_start.push(touched.len());
-        }
-        // free unknown → cells touching it
-        let (count, cells_of) = matrix::group_by_key(
-            nf,
-            (0..cells.len()).flat_map(|i| {
-                touched[touched_start[i]..touched_start[i + 1]]
-                    .iter()
-                    .map(move |&j| (j, i))
-            }),
-        );
-        let mut mark = vec![usize::MAX; nf];
-        let columns = (0..nf).map(|j| {
-            let mut col = vec![];
-            for &i in &cells_of[count[j]..count[j + 1]] {
-                for &k in &touched[touched_start[i]..touched_start[i + 1]] {
-                    if mark[k] != j && (!lower_only || k >= j) {
-                        mark[k] = j;
-                        col.push(k);
-                    }
-                }
-            }
-            if col.is_empty() {
-                col.push(j);
-            }
-            col.sort_unstable();
-            col
-        });
-        let matrix = SparseMatrix::from_columns(nf, columns);
+        let pattern::Pattern {
+            matrix,
+            scatter_start,
+            scatter,
+        } = pattern::build(mesh, &cells, &dofs, lower_only);
         if matrix.nnz() >= LINKED as usize {
             return Err(Error::solve(
                 "matrix too large for 32-bit scatter positions",
             ));
-        }
-        // Scatter positions: NONE (fixed dof, or upper triangle when lower_only), LINKED,
-        // or the position in the matrix, found column by column through a row → position
-        // table of that column (no search per entry).
-        let mut scatter_start = vec![0usize];
-        for &c in &cells {
-            let nd = 2 * mesh.cell_nodes(c).len();
-            scatter_start.push(scatter_start.last().unwrap() + nd * nd);
-        }
-        let mut scatter = vec![NONE; *scatter_start.last().unwrap()];
-        let free_of = |c: usize, a: usize| {
-            let nodes = mesh.cell_nodes(c);
-            dofs.roles[2 * nodes[a / 2] + a % 2]
-        };
-        for (i, &c) in cells.iter().enumerate() {
-            let nd = 2 * mesh.cell_nodes(c).len();
-            for a in 0..nd {
-                for b in 0..nd {
-                    let linked = !matches!(
-                        (free_of(c, a), free_of(c, b)),
-                        (Role::Fixed, _) | (_, Role::Fixed) | (Role::Free(_), Role::Free(_))
-                    );
-                    if linked {
-                        scatter[scatter_start[i] + a * nd + b] = LINKED;
-                    }
-                }
-            }
-        }
-        let mut position_of_row = vec![u32::MAX; nf];
-        for j in 0..nf {
-            let rows = matrix.col_ptr[j]..matrix.col_ptr[j + 1];
-            for q in rows.clone() {
-                position_of_row[matrix.row_idx[q]] = q as u32;
-            }
-            for &i in &cells_of[count[j]..count[j + 1]] {
-                let c = cells[i];
-                let nd = 2 * mesh.cell_nodes(c).len();
-                for b in 0..nd {
-                    if !matches!(free_of(c, b), Role::Free(jb) if jb == j) {
-                        continue;
-                    }
-                    for a in 0..nd {
-                        if let Role::Free(ia) = free_of(c, a) {
-                            if !(lower_only && ia < j) {
-                                scatter[scatter_start[i] + a * nd + b] = position_of_row[ia];
-                            }
-                        }
-                    }
-                }
-            }
         }
         Ok(Assembler {
             dofs,

@@ -15,7 +15,7 @@ use faer::sparse::linalg::cholesky::{
     SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::SymbolicSparseColMatRef;
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
 /// LDLᵀ without pivoting of P A Pᵀ for a fixed pattern of A and a fixed ordering. The
@@ -25,8 +25,9 @@ use faer::{Conj, Mat, MatMut, Par, Side};
 pub struct OrderedLdlt {
     /// Position i of the factorised matrix is unknown `fwd[i]`.
     fwd: Vec<usize>,
-    /// P A Pᵀ, lower triangle.
-    permuted: SparseMatrix,
+    /// P A Pᵀ, lower triangle: its pattern and values.
+    permuted: SymbolicSparseColMat<usize>,
+    permuted_values: Vec<f64>,
     /// For each entry of A, its position in `permuted` (NONE if it lands above the diagonal).
     map: Vec<usize>,
     symbolic: SymbolicCholesky<usize>,
@@ -184,39 +185,35 @@ impl OrderedLdlt {
             inv[p] = i;
         }
         // pattern of P A Pᵀ (lower): entry p = (r, c) of A goes to (inv r, inv c) if
-        // inv r ≥ inv c; grouped by column (counting), each column then sorted
-        let (col_ptr, mut entries) = group_by_key(
-            n,
-            (0..n)
-                .flat_map(|c| (a.col_ptr[c]..a.col_ptr[c + 1]).map(move |p| (c, p)))
-                .filter_map(|(c, p)| {
-                    let (ir, ic) = (inv[a.row_idx[p]], inv[c]);
-                    (ir >= ic).then_some((ic, (ir, p)))
-                }),
-        );
+        // inv r ≥ inv c, so column j of it holds only entries of A's column fwd[j]: built
+        // column by column, each sorted (a few dozen entries)
         let mut map = vec![NONE; a.nnz()];
-        let mut row_idx = Vec::with_capacity(entries.len());
-        for j in 0..n {
-            let col = &mut entries[col_ptr[j]..col_ptr[j + 1]];
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        col_ptr.push(0);
+        let mut row_idx = Vec::with_capacity(a.nnz() / 2 + n);
+        let mut col = vec![];
+        for (j, &c) in fwd.iter().enumerate() {
+            col.clear();
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let ir = inv[a.row_idx[p]];
+                if ir >= j {
+                    col.push((ir, p));
+                }
+            }
             col.sort_unstable();
-            for &(r, p) in col.iter() {
+            for &(r, p) in &col {
                 map[p] = row_idx.len();
                 row_idx.push(r);
             }
+            col_ptr.push(row_idx.len());
         }
-        let permuted = SparseMatrix {
-            n,
-            values: vec![0.0; row_idx.len()],
-            col_ptr,
-            row_idx,
-        };
         // With the identity ordering faer's analysis reads the upper triangle (whatever the
         // side argument), so it gets the transposed pattern (columns visited in order: each
         // transposed column comes out sorted); the numeric phase reads `permuted`.
         let (up_ptr, up_rows) = group_by_key(
             n,
             (0..n).flat_map(|c| {
-                permuted.row_idx[permuted.col_ptr[c]..permuted.col_ptr[c + 1]]
+                row_idx[col_ptr[c]..col_ptr[c + 1]]
                     .iter()
                     .map(move |&r| (r, c))
             }),
@@ -237,9 +234,13 @@ impl OrderedLdlt {
             symbolic.factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
         );
         let solve_scratch = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, Par::Seq));
+        let nnz = row_idx.len();
+        // checked once here; each factorisation pairs it with its values
+        let permuted = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
         Ok(OrderedLdlt {
             fwd,
             permuted,
+            permuted_values: vec![0.0; nnz],
             map,
             values: vec![0.0; symbolic.len_val()],
             symbolic,
@@ -259,14 +260,14 @@ impl OrderedLdlt {
             for p in a.col_ptr[col]..a.col_ptr[col + 1] {
                 let q = self.map[p];
                 if q != NONE {
-                    self.permuted.values[q] = value(p, a.row_idx[p], col);
+                    self.permuted_values[q] = value(p, a.row_idx[p], col);
                 }
             }
         }
         self.symbolic
             .factorize_numeric_ldlt(
                 &mut self.values,
-                self.permuted.as_faer(),
+                SparseColMatRef::new(self.permuted.as_ref(), &self.permuted_values),
                 Side::Lower,
                 Default::default(),
                 Par::Seq,

@@ -143,9 +143,9 @@ impl LinearSolver {
             self.ldlt = None;
             self.pattern = Some((a.col_ptr.clone(), a.row_idx.clone()));
         }
-        let mat = a.as_faer();
         match self.method {
             Method::Cholesky => {
+                let mat = a.as_faer();
                 if self.sym_llt.is_none() {
                     self.sym_llt = Some(
                         SymbolicLlt::try_new(mat.symbolic(), Side::Lower).map_err(|e| {
