@@ -9,6 +9,8 @@ use std::time::Instant;
 use tribo::case::{self, ssnp154};
 
 fn main() {
+    // as the `tribo` command does
+    tribo::cli::keep_freed_memory();
     let shared = Path::new("../shared/ssnp154");
     let mut runs: Vec<(&str, Option<&str>)> = ssnp154::ROWS.iter().map(|r| (r.id, None)).collect();
     runs.extend(["A", "B", "C", "D"].map(|id| (id, Some("mortar"))));

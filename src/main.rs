@@ -1,6 +1,7 @@
 //! The `tribo` command: parses arguments, runs, prints the error chain, sets the exit code.
 
 fn main() {
+    tribo::cli::keep_freed_memory();
     match tribo::cli::main() {
         Ok(code) => std::process::exit(code),
         Err(e) => {
