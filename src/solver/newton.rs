@@ -160,9 +160,10 @@ impl NewtonSettings {
     }
 }
 
-/// Frozen-body corrections: only from a residual below FROZEN_BELOW, not once the residual is
-/// within FROZEN_FINISH times the tolerance (the last corrections are full Newton ones, so
-/// friction's constraint rows converge as far below the tolerance as they do without).
+/// Frozen-body corrections: only from a residual below FROZEN_BELOW (or at a step's start),
+/// not once the residual is within FROZEN_FINISH times the tolerance (the last corrections
+/// are full Newton ones, so friction's constraint rows converge as far below the tolerance
+/// as they do without).
 const FROZEN_BELOW: f64 = 0.1;
 const FROZEN_FINISH: f64 = 1e3;
 
@@ -307,13 +308,15 @@ pub fn solve(
             let likely_converged = changes == 0
                 && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-2));
             // Frozen bodies: while the residual is still far from the tolerance but the
-            // iterate moves little (friction's stick/slip settling), the bodies' tangent and
-            // factorisations are kept and only the contact terms are current.
+            // iterate moves little (friction's stick/slip settling), and at the start of a
+            // step after the first (the bodies' tangent is that of the last step's end), the
+            // bodies' tangent and factorisations are kept and only the contact terms are
+            // current.
             let frozen_candidate = settings.frozen_bodies
                 && backtracking
                 && !resolve
                 && lin.condenses_contact()
-                && prev.is_some_and(|p| p < FROZEN_BELOW);
+                && (prev.is_some_and(|p| p < FROZEN_BELOW) || (it == 0 && last_step.is_some()));
             let mut norms = if resolve || frozen_candidate {
                 problem.evaluate_contact_tangent(&x, lambda, &mut r)?
             } else {
