@@ -82,8 +82,9 @@ pub struct NewtonSettings {
     /// Near convergence, a correction may reuse the last factorisation (a chord step)
     /// when it is predicted to reach the tolerance (see `solve`).
     pub chord_steps: bool,
-    /// With friction, while far from the tolerance, corrections may keep the bodies'
-    /// tangent and factorisations with current contact terms (see `solve`).
+    /// Corrections may keep the bodies' tangent and factorisations with current contact
+    /// terms: the first of a step, and with friction those far from the tolerance (see
+    /// `solve`).
     pub frozen_bodies: bool,
 }
 
@@ -224,6 +225,8 @@ pub fn solve(
     // the last converged step: (its load-factor increment, its change of the unknowns)
     let mut last_step: Option<(f64, Vec<f64>)> = None;
     let mut extrapolation_won = false;
+    // the last step converged (its last correction factorised the bodies near this start)
+    let mut last_converged = false;
     // Newton iterations of the last converged step
     let mut last_iterations = usize::MAX;
     while next < ends.len() {
@@ -307,16 +310,16 @@ pub fn solve(
             let prev = step.iterations.last().map(|i| i.relative_residual);
             let likely_converged = changes == 0
                 && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-2));
-            // Frozen bodies: while the residual is still far from the tolerance but the
-            // iterate moves little (friction's stick/slip settling), and at the start of a
-            // step after the first (the bodies' tangent is that of the last step's end), the
-            // bodies' tangent and factorisations are kept and only the contact terms are
-            // current.
+            // Frozen bodies: at the start of a step that follows a converged one (the bodies'
+            // tangent is that of the last step's end), and with friction while the residual
+            // is still far from the tolerance but the iterate moves little (stick and slip
+            // settling), the bodies' tangent and factorisations are kept and only the contact
+            // terms are current.
             let frozen_candidate = settings.frozen_bodies
-                && backtracking
                 && !resolve
                 && lin.condenses_contact()
-                && (prev.is_some_and(|p| p < FROZEN_BELOW) || (it == 0 && last_step.is_some()));
+                && ((it == 0 && last_converged)
+                    || (backtracking && prev.is_some_and(|p| p < FROZEN_BELOW)));
             let mut norms = if resolve || frozen_candidate {
                 problem.evaluate_contact_tangent(&x, lambda, &mut r)?
             } else {
@@ -526,6 +529,7 @@ pub fn solve(
                 report.states.push((lambda, x.clone()));
             }
             problem.commit_step();
+            last_converged = true;
             lambda_done = lambda;
             if lambda == ends[next] {
                 next += 1;
@@ -544,6 +548,7 @@ pub fn solve(
         }
         cuts += 1;
         level += 1;
+        last_converged = false;
         x = x_start;
         problem.restore_step();
     }
