@@ -229,12 +229,15 @@ impl LinearSolver {
     }
 
     /// Solves a x = b in place, `a` the matrix last given to `factor`; fails on a
-    /// non-finite result.
+    /// non-finite result. An exact factorisation solves alone (the interface condensation
+    /// of the current matrix too: a GMRES check there never iterated on SSNP154, and
+    /// Newton's residual, always the true one, judges the step anyway); the LDLᵀ of a
+    /// symmetric approximation, or an earlier factorisation, goes through GMRES.
     pub fn solve(&mut self, a: &SparseMatrix, b: &mut [f64]) -> Result<()> {
-        if self.method == Method::SaddleLdlt && !self.lu_solves() {
-            self.solve_iterative(a, b)?
-        } else {
+        if self.factorisation_is_exact() {
             self.solve_with_factorisation(b)
+        } else {
+            self.solve_iterative(a, b)?
         }
         finite(b)
     }
@@ -296,9 +299,8 @@ fn finite(b: &[f64]) -> Result<()> {
 const REUSE_ITERATIONS: usize = 8;
 
 impl LinearSolver {
-    /// A x = b by GMRES on the exact matrix, preconditioned by the factorisation: the
-    /// interface condensation is exact (GMRES only checks it), the LDLᵀ of a symmetric
-    /// approximation (`SaddleLdlt::factor`) is exact for a symmetric tangent and needs a
+    /// A x = b by GMRES on the exact matrix, preconditioned by the factorisation: that of
+    /// an earlier tangent (see `reuse_factor`), or the LDLᵀ of a symmetric approximation (`SaddleLdlt::factor`) is exact for a symmetric tangent and needs a
     /// few iterations for the contact tangents that are not. If GMRES stalls (a tangent
     /// far from symmetric), LU of the exact matrix takes over for the solves with this
     /// matrix (the next tangent tries GMRES again: a stall is usually one friction state,
