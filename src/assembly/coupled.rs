@@ -212,6 +212,7 @@ impl CoupledMatrix {
             values: vec![0.0; row_idx.len()],
             col_ptr,
             row_idx,
+            pattern_stamp: super::matrix::new_pattern_stamp(),
         };
         let nnz = self.matrix.nnz();
         let mut solid_there = vec![false; nnz];

@@ -33,6 +33,16 @@ pub struct SparseMatrix {
     pub col_ptr: Vec<usize>,
     pub row_idx: Vec<usize>,
     pub values: Vec<f64>,
+    /// Nonzero: an identity of the pattern (`col_ptr`, `row_idx`) from `new_pattern_stamp`,
+    /// so that a solver can tell an unchanged pattern without comparing it. Code that
+    /// changes the pattern must give it a new stamp (or 0: unknown, compared).
+    pub pattern_stamp: u64,
+}
+
+/// A stamp no pattern had before (see `SparseMatrix::pattern_stamp`).
+pub fn new_pattern_stamp() -> u64 {
+    static NEXT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(1);
+    NEXT.fetch_add(1, std::sync::atomic::Ordering::Relaxed)
 }
 
 impl SparseMatrix {
@@ -52,6 +62,7 @@ impl SparseMatrix {
             col_ptr,
             row_idx,
             values: vec![0.0; nnz],
+            pattern_stamp: 0,
         }
     }
 

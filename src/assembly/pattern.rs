@@ -4,7 +4,7 @@
 //! between the cores.
 
 use super::dofs::{DofMap, Role};
-use super::matrix::{group_by_key, SparseMatrix};
+use super::matrix::{group_by_key, new_pattern_stamp, SparseMatrix};
 use super::{LINKED, NONE};
 use crate::mesh::Mesh;
 use rayon::prelude::*;
@@ -99,6 +99,7 @@ pub fn build(mesh: &Mesh, cells: &[usize], dofs: &DofMap, lower_only: bool) -> P
         col_ptr,
         row_idx,
         values: vec![0.0; nnz],
+        pattern_stamp: new_pattern_stamp(),
     };
     let scatter_start: Vec<usize> = std::iter::once(0)
         .chain(cells.iter().scan(0, |end, &c| {

@@ -437,6 +437,7 @@ impl Block {
             values: vec![0.0; row_idx.len()],
             col_ptr,
             row_idx,
+            pattern_stamp: 0,
         };
         let mut fwd = leading_order(&local, interior)?;
         fwd.extend(interior..m);

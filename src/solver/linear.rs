@@ -50,6 +50,12 @@ impl Factorisation {
     }
 }
 
+/// How the last factorised pattern is recognised.
+enum Pattern {
+    Stamp(u64),
+    Copy(Vec<usize>, Vec<usize>),
+}
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     Cholesky,
@@ -60,8 +66,9 @@ pub enum Method {
 
 pub struct LinearSolver {
     pub method: Method,
-    /// The pattern of the last factorised matrix (column pointers, row indices), if valid.
-    pattern: Option<(Vec<usize>, Vec<usize>)>,
+    /// The pattern of the last factorised matrix, if valid: its stamp when it has one
+    /// (see `SparseMatrix::pattern_stamp`), else a copy (column pointers, row indices).
+    pattern: Option<Pattern>,
     /// For `SaddleLdlt`: number of leading primal (displacement) unknowns.
     pub n_primal: usize,
     ldlt: Option<Factorisation>,
@@ -133,15 +140,19 @@ impl LinearSolver {
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         self.stalled = false;
-        let unchanged = self
-            .pattern
-            .as_ref()
-            .is_some_and(|(c, r)| *c == a.col_ptr && *r == a.row_idx);
+        let unchanged = self.pattern.as_ref().is_some_and(|p| match p {
+            Pattern::Stamp(s) => *s == a.pattern_stamp,
+            Pattern::Copy(c, r) => a.pattern_stamp == 0 && *c == a.col_ptr && *r == a.row_idx,
+        });
         if !unchanged {
             self.sym_llt = None;
             self.sym_lu = None;
             self.ldlt = None;
-            self.pattern = Some((a.col_ptr.clone(), a.row_idx.clone()));
+            self.pattern = Some(if a.pattern_stamp != 0 {
+                Pattern::Stamp(a.pattern_stamp)
+            } else {
+                Pattern::Copy(a.col_ptr.clone(), a.row_idx.clone())
+            });
         }
         match self.method {
             Method::Cholesky => {
@@ -421,6 +432,26 @@ mod tests {
             }
         }
         a
+    }
+
+    #[test]
+    fn a_stamped_pattern_is_recognised_without_a_copy() {
+        let mut s = LinearSolver::new(Method::Cholesky);
+        let mut a = laplacian(30, 0.1);
+        a.pattern_stamp = crate::assembly::matrix::new_pattern_stamp();
+        s.factor(&a).unwrap();
+        assert!(matches!(s.pattern, Some(Pattern::Stamp(_))));
+        a.values.iter_mut().for_each(|v| *v *= 2.0);
+        s.factor(&a).unwrap();
+        assert_eq!(s.symbolic_count, 1);
+        // a new stamp is a new pattern (analysed again), as is an unstamped matrix
+        a.pattern_stamp = crate::assembly::matrix::new_pattern_stamp();
+        s.factor(&a).unwrap();
+        assert_eq!(s.symbolic_count, 2);
+        a.pattern_stamp = 0;
+        s.factor(&a).unwrap();
+        s.factor(&a).unwrap();
+        assert_eq!(s.symbolic_count, 3);
     }
 
     #[test]
