@@ -28,6 +28,9 @@ pub struct CoupledMatrix {
     /// position), and the positions no solid value lands on.
     solid_map: Vec<usize>,
     non_solid: Vec<usize>,
+    /// `solid_map` as runs of consecutive positions (solid start, position start, length):
+    /// the solid values are copied run by run.
+    solid_runs: Vec<(usize, usize, usize)>,
     /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
     key: Vec<(usize, usize)>,
     /// The (row, col) sequence of the last triplets and, for each triplet, its targets
@@ -81,8 +84,8 @@ impl CoupledMatrix {
             for &q in &self.non_solid {
                 m.values[q] = 0.0;
             }
-            for (&q, &v) in self.solid_map.iter().zip(&solid.values) {
-                m.values[q] = v;
+            for &(p, q, len) in &self.solid_runs {
+                m.values[q..q + len].copy_from_slice(&solid.values[p..p + len]);
             }
             self.solid_generation = Some(generation);
         }
@@ -220,6 +223,13 @@ impl CoupledMatrix {
             solid_there[q] = true;
         }
         self.non_solid = (0..nnz).filter(|&q| !solid_there[q]).collect();
+        self.solid_runs.clear();
+        for (p, &q) in solid_map.iter().enumerate() {
+            match self.solid_runs.last_mut() {
+                Some((p0, q0, len)) if *p0 + *len == p && *q0 + *len == q => *len += 1,
+                _ => self.solid_runs.push((p, q, 1)),
+            }
+        }
         self.solid_map = solid_map;
         self.rebuilds += 1;
     }

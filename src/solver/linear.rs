@@ -390,11 +390,32 @@ impl LinearSolver {
 }
 
 /// For each entry (r, c) of `a`, the position of (c, r), or usize::MAX if not in the pattern.
-/// Columns are visited in order, so the cursor in each column only moves forward.
+/// Columns are visited in order, so the cursor in each column only moves forward; the two
+/// halves of the columns in parallel (the second half's cursors start past the rows of the
+/// first).
 pub fn transpose_positions(a: &SparseMatrix) -> Vec<usize> {
-    let mut cursor: Vec<usize> = a.col_ptr[..a.n].to_vec();
     let mut out = vec![usize::MAX; a.nnz()];
-    for c in 0..a.n {
+    let mid = a.n / 2;
+    let (lo, hi) = out.split_at_mut(a.col_ptr[mid]);
+    rayon::join(
+        || transpose_columns(a, 0..mid, lo),
+        || transpose_columns(a, mid..a.n, hi),
+    );
+    out
+}
+
+/// `transpose_positions` for the columns `cols`, into `out` (their entries).
+fn transpose_columns(a: &SparseMatrix, cols: std::ops::Range<usize>, out: &mut [usize]) {
+    let first = cols.start;
+    let offset = a.col_ptr[first];
+    // in each column, the first row not before column `first`
+    let mut cursor: Vec<usize> = (0..a.n)
+        .map(|r| {
+            let rows = &a.row_idx[a.col_ptr[r]..a.col_ptr[r + 1]];
+            a.col_ptr[r] + rows.partition_point(|&x| x < first)
+        })
+        .collect();
+    for c in cols {
         for p in a.col_ptr[c]..a.col_ptr[c + 1] {
             let r = a.row_idx[p];
             let end = a.col_ptr[r + 1];
@@ -402,11 +423,10 @@ pub fn transpose_positions(a: &SparseMatrix) -> Vec<usize> {
                 cursor[r] += 1;
             }
             if cursor[r] < end && a.row_idx[cursor[r]] == c {
-                out[p] = cursor[r];
+                out[p - offset] = cursor[r];
             }
         }
     }
-    out
 }
 
 #[cfg(test)]
