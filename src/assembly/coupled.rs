@@ -24,13 +24,12 @@ impl Triplets {
 #[derive(Default)]
 pub struct CoupledMatrix {
     pub matrix: SparseMatrix,
-    /// Position in `matrix.values` of each value of the solid matrix (one solid value per
-    /// position), and the positions no solid value lands on.
-    solid_map: Vec<usize>,
-    non_solid: Vec<usize>,
-    /// `solid_map` as runs of consecutive positions (solid start, position start, length):
-    /// the solid values are copied run by run.
+    /// Where the solid values go in `matrix.values` (one solid value per position), as runs
+    /// of consecutive positions (solid start, position start, length): copied run by run.
+    /// `solid_nnz` solid values in all, and the positions no solid value lands on.
     solid_runs: Vec<(usize, usize, usize)>,
+    solid_nnz: usize,
+    non_solid: Vec<usize>,
     /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
     key: Vec<(usize, usize)>,
     /// The (row, col) sequence of the last triplets and, for each triplet, its targets
@@ -62,7 +61,7 @@ impl CoupledMatrix {
     ) {
         let n = dofs.num_free + n_extra;
         let same = self.matrix.n == n
-            && self.solid_map.len() == solid.nnz()
+            && self.solid_nnz == solid.nnz()
             && self.last_triplets.len() == extra.entries.len()
             && extra
                 .entries
@@ -131,7 +130,7 @@ impl CoupledMatrix {
         }
         // Status changes usually keep every target inside the current pattern (it holds the
         // explicit zeros of all candidate couplings): then no sort and no rebuild.
-        let fits = self.matrix.n == n && self.solid_map.len() == solid.nnz();
+        let fits = self.matrix.n == n && self.solid_nnz == solid.nnz();
         let mut scatter = Vec::with_capacity(targets.len());
         if fits {
             for &(col, row, coef) in &targets {
@@ -171,7 +170,8 @@ impl CoupledMatrix {
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);
         let mut row_idx = Vec::with_capacity(solid.nnz() + extra.len() + n);
-        let mut solid_map = vec![0usize; solid.nnz()];
+        self.solid_runs.clear();
+        self.non_solid.clear();
         let mut e = 0;
         for c in 0..n {
             let (mut p, end) = if c < solid.n {
@@ -196,9 +196,15 @@ impl CoupledMatrix {
                 if r == usize::MAX {
                     break;
                 }
+                let q = row_idx.len();
                 if rs == r {
-                    solid_map[p] = row_idx.len();
+                    match self.solid_runs.last_mut() {
+                        Some((p0, q0, len)) if *p0 + *len == p && *q0 + *len == q => *len += 1,
+                        _ => self.solid_runs.push((p, q, 1)),
+                    }
                     p += 1;
+                } else {
+                    self.non_solid.push(q);
                 }
                 if rx == r {
                     e += 1;
@@ -217,20 +223,7 @@ impl CoupledMatrix {
             row_idx,
             pattern_stamp: super::matrix::new_pattern_stamp(),
         };
-        let nnz = self.matrix.nnz();
-        let mut solid_there = vec![false; nnz];
-        for &q in &solid_map {
-            solid_there[q] = true;
-        }
-        self.non_solid = (0..nnz).filter(|&q| !solid_there[q]).collect();
-        self.solid_runs.clear();
-        for (p, &q) in solid_map.iter().enumerate() {
-            match self.solid_runs.last_mut() {
-                Some((p0, q0, len)) if *p0 + *len == p && *q0 + *len == q => *len += 1,
-                _ => self.solid_runs.push((p, q, 1)),
-            }
-        }
-        self.solid_map = solid_map;
+        self.solid_nnz = solid.nnz();
         self.rebuilds += 1;
     }
 }
