@@ -306,10 +306,12 @@ pub fn solve(
             let t = std::time::Instant::now();
             // Near convergence (small residual, statuses settled) the tangent is probably not
             // needed: check the residual alone first, and assemble the tangent only if it
-            // is not converged after all.
+            // is not converged after all, nor a chord step (SSNP154 A, B, E, F: the first
+            // load step's last full correction starts from 2–5e-2 and is followed by chord
+            // steps).
             let prev = step.iterations.last().map(|i| i.relative_residual);
             let likely_converged = changes == 0
-                && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-2));
+                && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-1));
             // Frozen bodies: at the start of a step that follows a converged one (the bodies'
             // tangent is that of the last step's end), and with friction while the residual
             // is still far from the tolerance but the iterate moves little (stick and slip
