@@ -166,7 +166,7 @@ impl NewtonSettings {
 /// are full Newton ones, so friction's constraint rows converge as far below the tolerance
 /// as they do without).
 const FROZEN_BELOW: f64 = 0.1;
-const FROZEN_FINISH: f64 = 1e3;
+const FROZEN_FINISH: f64 = 1e2;
 
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
