@@ -26,27 +26,21 @@ pub struct Pattern {
 pub fn build(mesh: &Mesh, cells: &[usize], dofs: &DofMap, lower_only: bool) -> Pattern {
     let nf = dofs.num_free;
     // Free unknowns touched by each cell, sorted and unique.
-    let mut tmp = vec![];
+    let (mut tmp, mut set) = (vec![], vec![]);
     let mut touched_start = vec![0usize];
     let mut touched = vec![];
     for &c in cells {
-        let first = touched.len();
+        set.clear();
         for &n in mesh.cell_nodes(c) {
             for comp in 0..2 {
                 dofs.expand_dof(2 * n + comp, &mut tmp);
-                touched.extend(tmp.iter().map(|t| t.0));
+                set.extend(tmp.iter().map(|t| t.0));
             }
         }
-        touched[first..].sort_unstable();
-        let mut len = first;
-        for k in first..touched.len() {
-            if len == first || touched[k] != touched[len - 1] {
-                touched[len] = touched[k];
-                len += 1;
-            }
-        }
-        touched.truncate(len);
-        touched_start.push(len);
+        set.sort_unstable();
+        set.dedup();
+        touched.extend_from_slice(&set);
+        touched_start.push(touched.len());
     }
     let cell_touched = |i: usize| &touched[touched_start[i]..touched_start[i + 1]];
     // free unknown → cells touching it

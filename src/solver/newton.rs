@@ -327,14 +327,16 @@ pub fn solve(
             } else {
                 problem.evaluate(&x, lambda, &mut r, !likely_converged)?
             };
+            // (a tangent evaluated below at the same point leaves the residual as it is)
+            let met = meets_tolerance(&norms);
             // a frozen correction that raised the residual is followed by a full one
             let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
             let raised = last_frozen && prev.is_some_and(|p| norms.relative() > p);
             let mut frozen = frozen_candidate
                 && !raised
-                && !meets_tolerance(&norms)
+                && !met
                 && norms.relative() > FROZEN_FINISH * settings.tolerance;
-            if frozen_candidate && !frozen && !meets_tolerance(&norms) {
+            if frozen_candidate && !frozen && !met {
                 norms = problem.evaluate(&x, lambda, &mut r, true)?;
             }
             // Chord step: after a Newton correction from x_{k-1} (residual r_{k-1}) to x_k
@@ -347,7 +349,6 @@ pub fn solve(
             // of each load step). Not with friction: its stick/slip switches make the
             // prediction poor, and a chord step ends at the tolerance where the last Newton
             // correction goes far below it, and with it the Coulomb condition |t| ≤ μ p.
-            let met = meets_tolerance(&norms);
             let chord = settings.chord_steps
                 && !backtracking
                 && lin.factorisation_is_exact()
