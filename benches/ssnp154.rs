@@ -11,6 +11,10 @@ use tribo::case::{self, ssnp154};
 fn main() {
     // as the `tribo` command does
     tribo::cli::keep_freed_memory();
+    tribo::cli::on_worker_thread(time_every_row);
+}
+
+fn time_every_row() {
     let shared = Path::new("../shared/ssnp154");
     let mut runs: Vec<(&str, Option<&str>)> = ssnp154::ROWS.iter().map(|r| (r.id, None)).collect();
     runs.extend(["A", "B", "C", "D"].map(|id| (id, Some("mortar"))));

@@ -2,7 +2,7 @@
 
 fn main() {
     tribo::cli::keep_freed_memory();
-    match tribo::cli::main() {
+    match tribo::cli::on_worker_thread(tribo::cli::main) {
         Ok(code) => std::process::exit(code),
         Err(e) => {
             eprintln!("error: {e}");
