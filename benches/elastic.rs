@@ -21,6 +21,12 @@ fn peak_rss_mib() -> f64 {
 }
 
 fn main() {
+    // as the `tribo` command does
+    tribo::cli::keep_freed_memory();
+    tribo::cli::on_worker_thread(time_elastic_solves);
+}
+
+fn time_elastic_solves() {
     let max_dofs: usize = std::env::args()
         .skip(1)
         .find_map(|a| a.parse().ok())

@@ -22,6 +22,12 @@ fn timed(mut f: impl FnMut()) -> (f64, f64) {
 }
 
 fn main() {
+    // as the `tribo` command does
+    tribo::cli::keep_freed_memory();
+    tribo::cli::on_worker_thread(time_formats);
+}
+
+fn time_formats() {
     let shared = Path::new("../shared/ssnp154");
     let tmp = std::env::temp_dir().join(format!("tribo-bench-formats-{}", std::process::id()));
     std::fs::create_dir_all(&tmp).unwrap();

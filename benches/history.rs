@@ -10,6 +10,12 @@ use std::path::Path;
 use std::time::Instant;
 
 fn main() {
+    // as the `tribo` command does
+    tribo::cli::keep_freed_memory();
+    tribo::cli::on_worker_thread(time_histories);
+}
+
+fn time_histories() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let example = std::fs::read_to_string(root.join("cases/examples/ssnp154_load_unload.toml"))
         .expect("the shipped example");

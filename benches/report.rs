@@ -10,6 +10,12 @@ use tribo::cli::{study, validate};
 use tribo::fem::solid::Kinematics;
 
 fn main() {
+    // as the `tribo` command does
+    tribo::cli::keep_freed_memory();
+    tribo::cli::on_worker_thread(time_report_and_study);
+}
+
+fn time_report_and_study() {
     let dir = std::env::temp_dir().join(format!("tribo-bench-report-{}", std::process::id()));
     let mut t: Vec<f64> = (0..3)
         .map(|_| {
