@@ -147,7 +147,7 @@ pub fn keep_freed_memory() {
 /// Runs `work` on a thread of a pool of one thread per core, so that the caller's thread
 /// is not a third one on two cores and each parallel section (dozens per Newton
 /// iteration) starts on the spot instead of waking a worker and putting the caller to
-/// sleep: SSNP154 rows 10–25 % faster on the 2-core machine. Without a pool (it could not
+/// sleep: SSNP154 rows about 10–20 % faster on the 2-core machine. Without a pool (it could not
 /// be started), `work` runs on the caller's thread. The threads get the main thread's
 /// usual 8 MiB stack (reserved, not touched).
 pub fn on_worker_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
