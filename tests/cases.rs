@@ -190,6 +190,7 @@ fn shipped_load_history_runs_every_step_and_balances_the_force() {
 /// size, small kinematics: Hertz's own), and the number of those nodes.
 fn mortar_deviation_from_hertz(quadratic: bool, size: f64) -> (f64, usize) {
     use tribo::case::ssnp154::{self, HERTZ_A, HERTZ_P0};
+    use tribo::post::contact_pressure::hertz_pressure;
     let spec = ssnp154::builtin_mesh(quadratic, size);
     let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
     let id = if quadratic { "B" } else { "A" };
@@ -202,7 +203,7 @@ fn mortar_deviation_from_hertz(quadratic: bool, size: f64) -> (f64, usize) {
     for &(n, p) in &out.contact_pressure[0] {
         let x = mesh.coords[n][0];
         if x.abs() < 0.9 * HERTZ_A {
-            let hertz = HERTZ_P0 * (1.0 - (x / HERTZ_A).powi(2)).sqrt();
+            let hertz = hertz_pressure(HERTZ_A, HERTZ_P0, x);
             worst = worst.max((p - hertz).abs() / HERTZ_P0);
             inside += 1;
         }

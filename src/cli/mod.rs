@@ -133,7 +133,7 @@ enum MeshCommand {
 /// Keeps freed memory in the process for reuse. glibc gives the top of its heaps back to the
 /// system and serves blocks over 128 KB by fresh mappings, so the buffers of every Newton
 /// iteration and every validation row are page-faulted in again, at 3.5 µs per 4 KB page on
-/// the benchmark machine (`tribo validate`: 81 000 faults, 23 000 with this). The price: the
+/// the benchmark machine (`tribo validate`: 81 000 faults, 25 000 with this). The price: the
 /// resident size stays at its peak until exit.
 pub fn keep_freed_memory() {
     #[cfg(all(target_os = "linux", target_env = "gnu"))]
@@ -147,9 +147,9 @@ pub fn keep_freed_memory() {
 /// Runs `work` on a thread of a pool of one thread per core, so that the caller's thread
 /// is not a third one on two cores and each parallel section (dozens per Newton
 /// iteration) starts on the spot instead of waking a worker and putting the caller to
-/// sleep: SSNP154 rows about 10–20 % faster on the 2-core machine. Without a pool (it could not
-/// be started), `work` runs on the caller's thread. The threads get the main thread's
-/// usual 8 MiB stack (reserved, not touched).
+/// sleep: SSNP154 rows about 10–20 % faster on the 2-core machine. Without a pool (it
+/// could not be started), `work` runs on the caller's thread. The threads get the main
+/// thread's usual 8 MiB stack (reserved, not touched).
 pub fn on_worker_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
     match rayon::ThreadPoolBuilder::new().stack_size(8 << 20).build() {
         Ok(pool) => pool.install(work),

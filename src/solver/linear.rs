@@ -311,8 +311,9 @@ const REUSE_ITERATIONS: usize = 8;
 
 impl LinearSolver {
     /// A x = b by GMRES on the exact matrix, preconditioned by the factorisation: that of
-    /// an earlier tangent (see `reuse_factor`), or the LDLᵀ of a symmetric approximation (`SaddleLdlt::factor`) is exact for a symmetric tangent and needs a
-    /// few iterations for the contact tangents that are not. If GMRES stalls (a tangent
+    /// an earlier tangent (see `reuse_factor`), or the LDLᵀ of a symmetric approximation
+    /// (`SaddleLdlt::factor`), which is exact for a symmetric tangent and needs a few
+    /// iterations for the contact tangents that are not. If GMRES stalls (a tangent
     /// far from symmetric), LU of the exact matrix takes over for the solves with this
     /// matrix (the next tangent tries GMRES again: a stall is usually one friction state,
     /// and LU costs several LDLᵀ factorisations).
