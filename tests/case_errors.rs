@@ -117,7 +117,7 @@ fn unknown_generator_and_missing_keys() {
     let e = error_of("gen.toml", &GOOD.replace("\"rectangle\"", "\"disc\""));
     assert_eq!(
         e,
-        "[mesh] unknown generator 'disc'; generators are: ssnp154, rectangle, ring"
+        "[mesh] unknown generator 'disc'; generators are: ssnp154, disc_pair, rectangle, ring"
     );
     let e = error_of("nx.toml", &GOOD.replace("nx = 4\n", ""));
     assert_eq!(e, "[mesh] generator 'rectangle' needs the key 'nx'");

@@ -73,6 +73,15 @@ pub fn build_mesh(spec: &schema::MeshSpec, dir: &Path) -> Result<Mesh> {
                     size: spec.size.unwrap_or(1.5),
                     ..Default::default()
                 }),
+                "disc_pair" => {
+                    let size = need(spec.size, "size", g)?;
+                    generate::disc_pair(&generate::DiscPairOptions {
+                        quadratic: spec.quadratic,
+                        radius: need(spec.radius, "radius", g)?,
+                        size,
+                        stretch: spec.stretch.unwrap_or(1.0),
+                    })
+                }
                 "rectangle" => generate::rectangle(
                     spec.origin.unwrap_or([0.0, 0.0]),
                     need(spec.width, "width", g)?,
@@ -91,7 +100,7 @@ pub fn build_mesh(spec: &schema::MeshSpec, dir: &Path) -> Result<Mesh> {
                     cell()?,
                 ),
                 other => Err(Error::model(format!(
-                    "[mesh] unknown generator '{other}'; generators are: ssnp154, rectangle, ring"
+                    "[mesh] unknown generator '{other}'; generators are: ssnp154, disc_pair, rectangle, ring"
                 ))),
             }
         }

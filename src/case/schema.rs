@@ -45,13 +45,18 @@ pub struct CaseFile {
 pub struct MeshSpec {
     /// Mesh file (Gmsh .msh), relative to the case file.
     pub file: Option<String>,
-    /// Built-in generator: "ssnp154", "rectangle" or "ring".
+    /// Built-in generator: "ssnp154", "disc_pair", "rectangle" or "ring".
     pub generator: Option<String>,
     /// ssnp154: quadratic cells (Quad8/Tri6).
     #[serde(default)]
     pub quadratic: bool,
-    /// ssnp154: element size at the contact (mm).
+    /// ssnp154: element size at the contact (mm); disc_pair: that of the upper disc.
     pub size: Option<f64>,
+    /// disc_pair: the lower disc's arc cells at the contact over the upper disc's
+    /// (default 1: mirror images).
+    pub stretch: Option<f64>,
+    /// disc_pair: radius of both discs.
+    pub radius: Option<f64>,
     /// rectangle / ring: cell kind ("Quad4", "Quad8", "Tri3", "Tri6").
     pub cell: Option<String>,
     pub origin: Option<[f64; 2]>,

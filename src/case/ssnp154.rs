@@ -265,6 +265,8 @@ pub fn builtin_mesh(quadratic: bool, size: f64) -> MeshSpec {
         generator: Some("ssnp154".into()),
         quadratic,
         size: Some(size),
+        stretch: None,
+        radius: None,
         cell: None,
         origin: None,
         width: None,

@@ -403,13 +403,24 @@ pub fn solve(
                 break;
             }
             // Divergence: a residual a thousand times the best one of this step (after the
-            // first corrections) is not going to come back in time; cut the step instead.
-            let best = step
+            // first corrections) that is not improving on any of the last three is not going
+            // to come back in time; cut the step instead. (A contact zone that grows node by
+            // node from a first touch starts far above the first residual and falls steadily.)
+            let residuals: Vec<f64> = step
                 .iterations
                 .iter()
                 .map(|i| i.relative_residual)
+                .collect();
+            let best = residuals.iter().copied().fold(f64::INFINITY, f64::min);
+            // (the last three corrected iterates: not the step's start, which no correction
+            // has yet put in contact)
+            let recent = residuals[1.min(residuals.len() - 1)..residuals.len() - 1]
+                .iter()
+                .rev()
+                .take(3)
+                .copied()
                 .fold(f64::INFINITY, f64::min);
-            if it >= 3 && rel > 1e3 * best {
+            if it >= 3 && rel > 1e3 * best && rel >= recent {
                 failure = Some(format!("divergence (residual {rel:.1e})"));
                 break;
             }

@@ -1,0 +1,97 @@
+//! The active set's inputs: which slave nodes touch at the start, the nodal weighted gaps,
+//! D_j and coverage, and the weights that scale the multiplier rows.
+
+use super::super::projection::point_and_tangent;
+use super::geometry::cross;
+use super::Mortar;
+use crate::mesh::Mesh;
+
+impl Mortar {
+    /// Whether slave corner node n touches the master: its own gap, measured along its
+    /// averaged normal, is below 1e-6 of the adjacent slave cell size. (The weighted gap of
+    /// a single touching point is positive, so it cannot start the active set.)
+    pub(super) fn touching(&self, mesh: &Mesh, u: &[f64], n: usize) -> bool {
+        let mid_cells: Vec<usize>;
+        let cells = match self.cells_of_node.get(&n) {
+            Some(c) => c,
+            // a mid-side node: only with an initial gap (a touching point is a corner)
+            None if self.initial_gap.is_some() => {
+                mid_cells = (0..self.slave.cells.len())
+                    .filter(|&ic| mesh.cell_nodes(self.slave.cells[ic]).contains(&n))
+                    .collect();
+                &mid_cells
+            }
+            None => return false,
+        };
+        let x = Self::pos(mesh, u, n);
+        let nv = if self.cells_of_node.contains_key(&n) {
+            self.node_normal(mesh, u, n)
+        } else {
+            self.cell_normal(mesh, u, cells[0], 0.0) // mid-side: its cell's normal there
+        };
+        for &ic in cells {
+            let sn = mesh.cell_nodes(self.slave.cells[ic]);
+            let (a, b) = (mesh.coords[sn[0]], mesh.coords[sn[1]]);
+            let size = (a[0] - b[0]).hypot(a[1] - b[1]);
+            for &im in &self.candidates[ic] {
+                let mc = self.master.cells[im];
+                let xm: Vec<[f64; 2]> = mesh
+                    .cell_nodes(mc)
+                    .iter()
+                    .map(|&m| Self::pos(mesh, u, m))
+                    .collect();
+                let mut xi = 0.0;
+                for _ in 0..30 {
+                    let (pm, tm) = point_and_tangent(mesh.kind(mc), &xm, xi);
+                    let step = cross([pm[0] - x[0], pm[1] - x[1]], nv) / cross(tm, nv);
+                    xi -= step;
+                    if step.abs() < 1e-13 {
+                        break;
+                    }
+                }
+                if xi.abs() <= 1.0 + 1e-9 {
+                    let (pm, _) = point_and_tangent(mesh.kind(mc), &xm, xi);
+                    let gap = (pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1];
+                    if gap <= self.initial_gap.unwrap_or(1e-6 * size) {
+                        return true;
+                    }
+                }
+            }
+        }
+        false
+    }
+
+    /// Weighted gaps, D_j, whether each slave node faces the master surface (at least
+    /// half of ∫ N_j is covered by master segments) and the weighted slips (zero without
+    /// friction) at u.
+    #[allow(clippy::type_complexity)]
+    pub(super) fn gaps(&self, mesh: &Mesh, u: &[f64]) -> (Vec<f64>, Vec<f64>, Vec<bool>, Vec<f64>) {
+        let nm = self.mult_nodes.len();
+        let (mut g, mut d, mut cov) = (vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]);
+        let mut sl = vec![0.0; nm];
+        for ic in 0..self.slave.cells.len() {
+            let t = self.cell_terms(mesh, u, ic);
+            for (k, v) in t.gap {
+                g[k] += v;
+            }
+            for (k, v) in t.dj {
+                d[k] += v;
+            }
+            for (k, v) in t.cover {
+                cov[k] += v;
+            }
+            for (k, v) in t.slip {
+                sl[k] += v;
+            }
+        }
+        let facing = (0..nm).map(|k| cov[k] > 0.5 * d[k]).collect();
+        (g, d, facing, sl)
+    }
+}
+
+/// The weight D_j scaling each node's multiplier rows; a weightless node (on the axis) gets
+/// the largest weight, so that its row sets its multiplier to zero on the usual scale.
+pub(super) fn row_weights(d: &[f64]) -> Vec<f64> {
+    let dref = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    d.iter().map(|&v| if v != 0.0 { v } else { dref }).collect()
+}

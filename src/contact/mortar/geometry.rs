@@ -1,0 +1,118 @@
+//! Where the mortar terms are evaluated: positions, the slave and master normal fields
+//! (nodal normals averaged over the adjacent cells), the measure of the surface element.
+
+use super::super::projection::point_and_tangent;
+use super::super::surface::Surface;
+use super::Mortar;
+use crate::fem::element::{shape, MAX_NODES};
+use crate::mesh::Mesh;
+use std::collections::HashMap;
+
+pub(super) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+    a[0] * b[1] - a[1] * b[0]
+}
+
+impl Mortar {
+    pub(super) fn pos(mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        [
+            mesh.coords[n][0] + u[2 * n],
+            mesh.coords[n][1] + u[2 * n + 1],
+        ]
+    }
+
+    /// Where the geometry (normals, projections, Jacobians) is evaluated: the current
+    /// position for large kinematics, the reference one for small kinematics (whose
+    /// multipliers are then pressures on the reference surface, like the loads).
+    pub(super) fn geo(&self, mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        if self.small {
+            mesh.coords[n]
+        } else {
+            Self::pos(mesh, u, n)
+        }
+    }
+
+    /// Outward unit normal of slave cell ic at ξ.
+    pub(super) fn cell_normal(&self, mesh: &Mesh, u: &[f64], ic: usize, xi: f64) -> [f64; 2] {
+        self.edge_normal(mesh, u, &self.slave, ic, xi)
+    }
+
+    /// Outward unit normal of cell ic of surface `surf` at ξ.
+    pub(super) fn edge_normal(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        surf: &Surface,
+        ic: usize,
+        xi: f64,
+    ) -> [f64; 2] {
+        let c = surf.cells[ic];
+        let x: Vec<[f64; 2]> = mesh
+            .cell_nodes(c)
+            .iter()
+            .map(|&n| self.geo(mesh, u, n))
+            .collect();
+        let (_, t) = point_and_tangent(mesh.kind(c), &x, xi);
+        let l = t[0].hypot(t[1]);
+        if surf.ccw[ic] {
+            [t[1] / l, -t[0] / l]
+        } else {
+            [-t[1] / l, t[0] / l]
+        }
+    }
+
+    /// Averaged outward unit normal at a slave corner node.
+    pub(super) fn node_normal(&self, mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
+        self.averaged_normal(mesh, u, &self.slave, &self.cells_of_node, n)
+    }
+
+    /// Outward unit normal at corner node n of `surf`, averaged over the cells sharing it.
+    pub(super) fn averaged_normal(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        surf: &Surface,
+        cells_of_node: &HashMap<usize, Vec<usize>>,
+        n: usize,
+    ) -> [f64; 2] {
+        let mut acc = [0.0; 2];
+        for &ic in &cells_of_node[&n] {
+            let nodes = mesh.cell_nodes(surf.cells[ic]);
+            let xi = if nodes[0] == n { -1.0 } else { 1.0 };
+            let v = self.edge_normal(mesh, u, surf, ic, xi);
+            acc[0] += v[0];
+            acc[1] += v[1];
+        }
+        let l = acc[0].hypot(acc[1]);
+        [acc[0] / l, acc[1] / l]
+    }
+
+    /// The master's normal field on master cell im at ξ: its averaged nodal normals
+    /// interpolated (the cell's own normal at a mid-side node), normalised.
+    pub(super) fn master_normal(&self, mesh: &Mesh, u: &[f64], im: usize, xi: f64) -> [f64; 2] {
+        let mc = self.master.cells[im];
+        let kind = mesh.kind(mc);
+        let nodes = mesh.cell_nodes(mc);
+        let mut nv = [0.0; MAX_NODES];
+        shape(kind, [xi, 0.0], &mut nv);
+        let mut acc = [0.0; 2];
+        for (a, &n) in nodes.iter().enumerate() {
+            let v = if a < 2 {
+                self.averaged_normal(mesh, u, &self.master, &self.master_cells_of_node, n)
+            } else {
+                self.edge_normal(mesh, u, &self.master, im, 0.0)
+            };
+            acc[0] += nv[a] * v[0];
+            acc[1] += nv[a] * v[1];
+        }
+        let l = acc[0].hypot(acc[1]);
+        [acc[0] / l, acc[1] / l]
+    }
+
+    pub(super) fn measure(&self, p: [f64; 2]) -> f64 {
+        if self.axisymmetric {
+            2.0 * std::f64::consts::PI * p[0]
+        } else {
+            self.thickness
+        }
+    }
+}
