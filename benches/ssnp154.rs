@@ -44,8 +44,7 @@ fn time_every_row() {
             for _ in 0..5 {
                 let t = Instant::now();
                 let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
-                let mut c = ssnp154::contact_case(id, spec.clone(), formulation);
-                ssnp154::choose_mortar_slave(&mut c, &mesh);
+                let c = ssnp154::contact_case(id, spec.clone(), formulation);
                 let out = case::run(&c, &mesh, false).unwrap();
                 times.push(t.elapsed().as_secs_f64());
                 iters = out.report.total_iterations;

@@ -128,8 +128,7 @@ fn ssnp154_c_and_d_with_mortar_friction() {
     ] {
         let spec = ssnp154::builtin_mesh(quadratic, 1.5);
         let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
-        let mut c = ssnp154::contact_case(id, spec, Some("mortar"));
-        ssnp154::choose_mortar_slave(&mut c, &mesh);
+        let c = ssnp154::contact_case(id, spec, Some("mortar"));
         let out = case::run(&c, &mesh, false).unwrap();
         let get = |n: &str| out.probes.iter().find(|p| p.0 == n).unwrap().1;
         let (dy, siyy) = (get("DY_B"), get("SIYY_B"));
@@ -195,7 +194,6 @@ fn mortar_deviation_from_hertz(quadratic: bool, size: f64) -> (f64, usize) {
     let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
     let id = if quadratic { "B" } else { "A" };
     let mut c = ssnp154::contact_case(id, spec, Some("mortar"));
-    ssnp154::choose_mortar_slave(&mut c, &mesh);
     c.model.kinematics = tribo::fem::solid::Kinematics::Small;
     let out = case::run(&c, &mesh, false).unwrap();
     let mut inside = 0;

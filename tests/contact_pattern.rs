@@ -94,8 +94,7 @@ fn mortar_contact_zone_grows_inside_one_pattern() {
     for quadratic in [false, true] {
         let spec = ssnp154::builtin_mesh(quadratic, 1.5);
         let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
-        let mut c = ssnp154::contact_case("A", spec, Some("mortar"));
-        ssnp154::choose_mortar_slave(&mut c, &mesh);
+        let c = ssnp154::contact_case("A", spec, Some("mortar"));
         let out = case::run(&c, &mesh, false).unwrap();
         assert_eq!(
             out.report.symbolic_factorizations, 1,

@@ -416,6 +416,36 @@ fn group_nodes(mesh: &Mesh, groups: &[String], what: &str, key: &str) -> Result<
     Ok(nodes)
 }
 
+/// The multiplier indices of `nodes` on a mortar pair: a node of the surface that carries
+/// the multipliers, or one at the same place on the other surface (the pair may have put
+/// the multipliers on the surface the user named master); Err(node) for a node on neither.
+fn multiplier_indices(
+    mesh: &Mesh,
+    m: &Mortar,
+    nodes: &[usize],
+) -> std::result::Result<Vec<usize>, usize> {
+    let (lo, hi) = crate::mesh::quality::bounding_box(mesh);
+    let tol = 1e-9 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let mut out = vec![];
+    for &n in nodes {
+        if let Some(k) = m.mult_nodes.iter().position(|&s| s == n) {
+            out.push(k);
+            continue;
+        }
+        if !m.master.nodes.contains(&n) {
+            return Err(n);
+        }
+        let x = mesh.coords[n];
+        if let Some(k) = m.mult_nodes.iter().position(|&s| {
+            let y = mesh.coords[s];
+            (x[0] - y[0]).hypot(x[1] - y[1]) <= tol
+        }) {
+            out.push(k);
+        }
+    }
+    Ok(out)
+}
+
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
     let bodies = crate::mesh::topology::node_bodies(mesh);
@@ -496,6 +526,16 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 c.rho_f
             )));
         }
+        if let Some(a) = c.adjust {
+            if !(a.is_finite() && a >= 0.0) || c.formulation != "mortar" {
+                return Err(Error::model(format!(
+                    "{what}: adjust (a distance: initial gaps and overlaps up to it are removed) \
+                     must be finite and 0 or positive and goes with formulation = \"mortar\", \
+                     got {a} with formulation = \"{}\"",
+                    c.formulation
+                )));
+            }
+        }
         let node_to_segment = c.formulation == "node-to-segment";
         if !node_to_segment && (c.penalty.is_some() || !c.exclude.is_empty()) {
             return Err(Error::model(format!(
@@ -518,6 +558,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     .iter()
                     .map(|m| m.young)
                     .fold(f64::INFINITY, f64::min);
+                same_body()?;
+                let (slave, master, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
                 let h_min = slave
                     .cells
                     .iter()
@@ -527,7 +569,6 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                         (a[0] - b[0]).hypot(a[1] - b[1])
                     })
                     .fold(f64::INFINITY, f64::min);
-                same_body()?;
                 let mut mortar = Mortar::new(
                     mesh,
                     slave,
@@ -538,15 +579,19 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                     case.model.kinematics == Kinematics::Small,
                 );
                 mortar.initial_gap = c.initial_gap;
+                mortar.adjust = c.adjust;
                 // a micro-strain of the softest body: below it a pressure is round-off
                 mortar.pressure_floor = 1e-6 * e_min;
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
                     let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
-                    mortar.friction_excluded = nodes
-                        .iter()
-                        .filter_map(|n| mortar.mult_nodes.iter().position(|m| m == n))
-                        .collect();
+                    mortar.friction_excluded = multiplier_indices(mesh, &mortar, &nodes)
+                        .map_err(|n| {
+                            Error::model(format!(
+                                "{what}: friction_exclude: node {} is on neither contact surface",
+                                n + 1
+                            ))
+                        })?;
                 }
                 pairs.push(Box::new(mortar));
                 continue;

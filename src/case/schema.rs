@@ -331,6 +331,10 @@ pub struct ContactSpec {
     /// With initial = "closed": open gaps up to this distance count as closed at the start.
     #[serde(default)]
     pub initial_gap: Option<f64>,
+    /// mortar: initial gaps and overlaps up to this distance are removed, strain-free
+    /// (surfaces that fit but are discretised differently on the two sides).
+    #[serde(default)]
+    pub adjust: Option<f64>,
     /// Coulomb friction coefficient (0: frictionless).
     #[serde(default)]
     pub friction: f64,

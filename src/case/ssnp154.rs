@@ -211,6 +211,7 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         rho: 100.0,
         initial: "closed".into(),
         initial_gap: Some(0.1),
+        adjust: None,
         friction: 0.0,
         rho_f: 100.0,
         friction_exclude: vec![],
@@ -227,35 +228,6 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         k.friction_exclude = vec!["C".into()];
     }
     c
-}
-
-/// Mortar multipliers belong on the coarser surface where the bodies touch (a finer slave
-/// forced onto a coarser master's kinks gives oscillating pressures). The SSNP154 default
-/// is the block top (1.5 mm against the arc's 0.6 mm on the reference meshes; the built-in
-/// meshes keep the arc no coarser than the block top in the contact zone). On other meshes
-/// given to `validate --meshes` the arc may be the coarser one: then the pair is swapped.
-/// Compares the mean cell length within x < 7 mm (the half-width is 6.2).
-pub fn choose_mortar_slave(c: &mut CaseFile, mesh: &crate::mesh::Mesh) {
-    let mean_length = |group: &str| -> f64 {
-        let Ok(cells) = mesh.cell_group(group) else {
-            return f64::NAN;
-        };
-        let lengths: Vec<f64> = cells
-            .iter()
-            .map(|&e| {
-                let n = mesh.cell_nodes(e);
-                (mesh.coords[n[0]], mesh.coords[n[1]])
-            })
-            .filter(|(a, b)| a[0].min(b[0]) < 7.0)
-            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
-            .collect();
-        lengths.iter().sum::<f64>() / lengths.len() as f64
-    };
-    for k in c.contact.iter_mut().filter(|k| k.formulation == "mortar") {
-        if mean_length(&k.master) > mean_length(&k.slave) {
-            std::mem::swap(&mut k.slave, &mut k.master);
-        }
-    }
 }
 
 /// Mesh spec of the built-in SSNP154 mesh.

@@ -88,7 +88,6 @@ pub fn hertz(opts: &Options) -> Result<i32> {
             let id = if opts.quadratic { "B" } else { "A" };
             let mut c = ssnp154::contact_case(id, spec, Some(opts.formulation));
             c.model.kinematics = kin;
-            ssnp154::choose_mortar_slave(&mut c, &mesh);
             progress(k, opts.levels, kname);
             let out = case::run(&c, &mesh, false)?;
             let wall = t0.elapsed().as_secs_f64();

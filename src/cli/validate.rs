@@ -88,8 +88,7 @@ pub fn validate(
         };
         let t0 = Instant::now();
         let mesh = case::build_mesh(&spec, Path::new(""))?;
-        let mut c = ssnp154::contact_case(id, spec, formulation);
-        ssnp154::choose_mortar_slave(&mut c, &mesh);
+        let c = ssnp154::contact_case(id, spec, formulation);
         let out = case::run(&c, &mesh, verbose)?;
         let wall = t0.elapsed().as_secs_f64();
         let get = |n: &str| {

@@ -106,21 +106,46 @@ pub fn deformed_profile(
 }
 
 /// Contact half-width from nodal pressures along a coordinate x ≥ 0 (the pressure vanishing
-/// beyond it): an elliptical (Hertz-shaped) fit p² = A − B x² through the last two loaded
-/// nodes, or the last loaded node's x when that fit is not defined.
+/// beyond it): the elliptical (Hertz-shaped) profile p² = A − B x² fitted by least squares
+/// to the loaded nodes of the outer half of the loaded zone but the last one (whose value
+/// averages the pressure over a support that straddles the edge), a = √(A/B); through the
+/// last two loaded nodes when fewer remain; the last loaded node's x when no fit is defined
+/// or the fit ends before it.
 pub fn half_width(samples: &[(f64, f64)]) -> Option<f64> {
     let mut s: Vec<(f64, f64)> = samples.to_vec();
     s.sort_by(|a, b| a.0.total_cmp(&b.0));
     let pmax = s.iter().fold(0.0f64, |m, p| m.max(p.1));
     // multipliers of open nodes are zero up to round-off: "loaded" is above 1e-3 of the peak
     let loaded: Vec<(f64, f64)> = s.into_iter().filter(|p| p.1 > 1e-3 * pmax).collect();
-    let (&(x1, p1), &(x2, p2)) = (loaded.get(loaded.len().checked_sub(2)?)?, loaded.last()?);
-    let b = (p1 * p1 - p2 * p2) / (x2 * x2 - x1 * x1);
-    let a = p1 * p1 + b * x1 * x1;
-    if b > 0.0 && a > 0.0 && (a / b).sqrt() >= x2 {
+    let &(x_last, _) = loaded.last()?;
+    let inner: Vec<(f64, f64)> = loaded[..loaded.len() - 1]
+        .iter()
+        .copied()
+        .filter(|p| p.0 >= 0.5 * x_last)
+        .collect();
+    let fit: Vec<(f64, f64)> = if inner.len() >= 3 {
+        inner
+    } else {
+        loaded[loaded.len().checked_sub(2)?..].to_vec()
+    };
+    // least squares of y = p² against z = x²: y = A − B z
+    let n = fit.len() as f64;
+    let (sz, sy) = fit
+        .iter()
+        .fold((0.0, 0.0), |(a, b), p| (a + p.0 * p.0, b + p.1 * p.1));
+    let (mz, my) = (sz / n, sy / n);
+    let (mut szz, mut szy) = (0.0, 0.0);
+    for p in &fit {
+        let (dz, dy) = (p.0 * p.0 - mz, p.1 * p.1 - my);
+        szz += dz * dz;
+        szy += dz * dy;
+    }
+    let b = -szy / szz;
+    let a = my + b * mz;
+    if b > 0.0 && a > 0.0 && (a / b).sqrt() >= x_last {
         Some((a / b).sqrt())
     } else {
-        Some(x2)
+        Some(x_last)
     }
 }
 

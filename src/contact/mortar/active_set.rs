@@ -69,6 +69,10 @@ impl Mortar {
         let nm = self.mult_nodes.len();
         let (mut g, mut d, mut cov) = (vec![0.0; nm], vec![0.0; nm], vec![0.0; nm]);
         let mut sl = vec![0.0; nm];
+        // (measured from the removed initial gaps, once `initialise` has set them)
+        for (k, o) in self.offset.iter().enumerate() {
+            g[k] = -o;
+        }
         for ic in 0..self.slave.cells.len() {
             let t = self.cell_terms(mesh, u, ic);
             for (k, v) in t.gap {

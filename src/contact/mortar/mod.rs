@@ -28,12 +28,16 @@
 //! | `active_set.rs` | initial contact, nodal weighted gaps and D_j, row weights |
 //! | `friction.rs` | the Coulomb branch of a slave node |
 //! | `linearisation.rs` | the tangent: exact (small kinematics) or by central differences |
+//! | `sides.rs` | which surface carries the multipliers: the coarser where they face |
 
 mod active_set;
 mod friction;
 mod geometry;
 mod linearisation;
 mod segments;
+mod sides;
+
+pub use sides::multiplier_side;
 
 use super::pair::ContactPair;
 use super::point_segment::{candidates_at, initial_candidates};
@@ -51,7 +55,7 @@ use std::collections::HashMap;
 /// The matrix pattern holds the couplings of the master cells within this many cell
 /// sizes of each slave cell (the pairing itself uses one), so that a contact zone growing
 /// under load re-pairs inside it.
-const PATTERN_MARGIN: f64 = 3.0;
+pub(crate) const PATTERN_MARGIN: f64 = 3.0;
 
 pub struct Mortar {
     pub slave: Surface,
@@ -83,6 +87,12 @@ pub struct Mortar {
     /// Open gaps (along the averaged normal) up to this count as closed at the start;
     /// None: only touching nodes (1e-6 of the cell size).
     pub initial_gap: Option<f64>,
+    /// Initial gaps and overlaps up to this distance are removed, strain-free: the weighted
+    /// gap of such a node is measured from its initial value (`offset`, set by `initialise`).
+    /// For interfaces discretised differently on the two sides (linear chords against
+    /// quadratic arcs) whose bodies fit in the geometry the mesh approximates.
+    pub adjust: Option<f64>,
+    offset: Vec<f64>,
     /// Coulomb coefficient (None: frictionless), and the multiplier indices of the slave
     /// nodes excluded from friction.
     pub friction: Option<f64>,
@@ -174,6 +184,8 @@ impl Mortar {
             thickness,
             small,
             initial_gap: None,
+            adjust: None,
+            offset: vec![],
             friction: None,
             friction_excluded: vec![],
             pressure_floor: 0.0,
@@ -238,9 +250,24 @@ impl ContactPair for Mortar {
     fn initialise(&mut self, mesh: &Mesh) {
         // Nodes already touching (normalised gap within 1e-6 of the cell size) start active.
         let u = vec![0.0; 2 * mesh.num_nodes()];
-        let (_, d, facing, _) = self.gaps(mesh, &u);
+        self.offset.clear();
+        let (g0, d, facing, _) = self.gaps(mesh, &u);
+        self.offset = match self.adjust {
+            Some(dist) => (0..g0.len())
+                .map(|k| {
+                    let near = facing[k] && d[k] != 0.0 && g0[k].abs() <= dist * d[k].abs();
+                    if near {
+                        g0[k]
+                    } else {
+                        0.0
+                    }
+                })
+                .collect(),
+            None => vec![0.0; g0.len()],
+        };
         for k in 0..self.active.len() {
-            self.active[k] = facing[k] && self.touching(mesh, &u, self.mult_nodes[k]);
+            let adjusted = self.offset[k] != 0.0;
+            self.active[k] = facing[k] && (adjusted || self.touching(mesh, &u, self.mult_nodes[k]));
         }
         // A touching node without weight (a quadratic slave's corner on the axis) holds
         // nothing: the weighted nodes of its cells, the nearest that can, start active too
@@ -272,6 +299,9 @@ impl ContactPair for Mortar {
             .map(|ic| self.cell_terms(mesh, u, ic))
             .collect();
         let (mut g, mut d) = (vec![0.0; nm], vec![0.0; nm]);
+        for (j, o) in self.offset.iter().enumerate() {
+            g[j] = -o;
+        }
         for t in &terms {
             for &(j, v) in &t.gap {
                 g[j] += v;
