@@ -80,20 +80,64 @@ fn mortar_passes_the_contact_patch_test() {
 /// The same patch in plane stress and in axisymmetry (x = radius, the left side on the
 /// axis): the exact state is still uniform (σ_yy = −P, u_r = ν P r / E in axisymmetry), so
 /// the mortar contact pressure must be P to 1e-8 with the 2πr weighting too.
-/// With quadratic cells the slave node on the axis has a zero weight (∫ N r dr = 0 for the
-/// Seg3 corner at r = 0): it carries no multiplier, and its pressure is extrapolated from
-/// its cell's other two nodes.
+/// The slave node on the axis reports the limit of its neighbours' pressure (with quadratic
+/// cells it has a zero weight, ∫ N r dr = 0 for the Seg3 corner at r = 0, and carries no
+/// multiplier). Every cell kind; the node at r = 0 is checked to be among the slave nodes.
 #[test]
 fn mortar_passes_the_contact_patch_test_in_plane_stress_and_axisymmetry() {
     for model in ["plane_stress", "axisymmetric"] {
-        for kind in [CellKind::Quad4, CellKind::Quad8] {
+        for kind in [
+            CellKind::Tri3,
+            CellKind::Tri6,
+            CellKind::Quad4,
+            CellKind::Quad8,
+        ] {
             let extra = format!("[model]\nmodelisation = \"{model}\"");
             let p = pressures(kind, "mortar", &extra);
+            assert_eq!(p[0].0, 0.0, "a slave node on the axis");
             let worst = p
                 .iter()
                 .map(|&(_, p)| ((p - P) / P).abs())
                 .fold(0.0, f64::max);
             assert!(worst < 1e-8, "{model} {kind}: {worst:e}");
+        }
+    }
+}
+
+/// Point-to-segment (Gauss and nodal integration) and node-to-segment with a slave node on
+/// the axis: no singular system, and every reported pressure finite (the one at r = 0 its
+/// neighbours' limit).
+#[test]
+fn every_formulation_handles_a_slave_node_on_the_axis() {
+    for (formulation, integration) in [
+        ("point-to-segment", "gauss"),
+        ("point-to-segment", "nodal"),
+        ("node-to-segment", "nodal"),
+    ] {
+        for kind in [
+            CellKind::Tri3,
+            CellKind::Tri6,
+            CellKind::Quad4,
+            CellKind::Quad8,
+        ] {
+            let extra = format!(
+                "integration = \"{integration}\"\n[model]\nmodelisation = \"axisymmetric\""
+            );
+            let p = pressures(kind, formulation, &extra);
+            assert_eq!(p[0].0, 0.0, "a slave node on the axis");
+            for &(x, v) in &p {
+                assert!(
+                    v.is_finite(),
+                    "{formulation} {integration} {kind}: p({x}) = {v}"
+                );
+            }
+            // the axis value is that of its neighbours (p = α + β r² through the next two)
+            let (d1, d2) = (p[1].0, p[2].0);
+            let limit = (p[1].1 * d2 * d2 - p[2].1 * d1 * d1) / (d2 * d2 - d1 * d1);
+            assert!(
+                (p[0].1 - limit).abs() <= 1e-9 * P,
+                "{formulation} {kind}: {p:?}"
+            );
         }
     }
 }

@@ -291,11 +291,11 @@ fn step_outcome(
 #[allow(clippy::type_complexity)]
 fn contact_tractions(
     cp: &ContactProblem,
-) -> (
+) -> Result<(
     Vec<Vec<(usize, f64)>>,
     Vec<(f64, Vec<(usize, f64)>)>,
     Vec<Multipliers>,
-) {
+)> {
     let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
     for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
         let lam = &cp.lam[b..b + p.num_multipliers()];
@@ -303,7 +303,18 @@ fn contact_tractions(
         shear.push((p.friction(), p.nodal_shear(lam)));
         multipliers.push(p.nodal_multipliers(lam));
     }
-    (pressures, shear, multipliers)
+    // never a non-finite value in an output
+    for (i, (p, s)) in pressures.iter().zip(&shear).enumerate() {
+        if let Some(&(n, v)) = p.iter().chain(&s.1).find(|(_, v)| !v.is_finite()) {
+            return Err(Error::Solve(format!(
+                "[[contact]] {}: the contact traction at node {} is {v} (a degenerate \
+                 contact there: a node with no share of the surface?)",
+                i + 1,
+                n + 1
+            )));
+        }
+    }
+    Ok((pressures, shear, multipliers))
 }
 
 /// Stress component of a probe field (4 = von Mises), None for displacements.
@@ -711,12 +722,12 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
             if !output {
                 continue;
             }
-            let (p, sh, m) = contact_tractions(&cp);
+            let (p, sh, m) = contact_tractions(&cp)?;
             let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
             step.contact_multipliers = m;
             steps.push(step);
         }
-        let (pressures, shear, multipliers) = contact_tractions(&cp);
+        let (pressures, shear, multipliers) = contact_tractions(&cp)?;
         let surfaces = cp
             .pairs
             .iter()

@@ -2,14 +2,16 @@
 //!
 //! | file | what |
 //! |---|---|
+//! | `axis.rs` | the pressure at slave nodes of zero weight (on the axis) from their neighbours |
 //! | `surface.rs` | contact surfaces from edge groups: connected chains with outward sides |
 //! | `projection.rs` | closest-point projection on Seg2/Seg3 segments |
 //! | `friction.rs` | Coulomb's law as a pure return map (semi-multiplier form) |
 //! | `pair.rs` | the `ContactPair` interface of the formulations |
-//! | `mortar.rs` | dual mortar, nodal weighted gaps and active set (our default) |
+//! | `mortar/` | dual mortar, nodal weighted gaps and active set |
 //! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
 //! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 
+pub mod axis;
 pub mod friction;
 pub mod mortar;
 pub mod pair;

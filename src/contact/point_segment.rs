@@ -31,7 +31,8 @@ use std::collections::HashMap;
 pub enum Integration {
     /// n-point Gauss–Legendre per slave cell.
     Gauss(usize),
-    /// At the nodes: trapezoid on Seg2, Simpson on Seg3.
+    /// At the nodes: trapezoid on Seg2, Simpson on Seg3 (axisymmetric: each node's consistent
+    /// share ∫ N_a 2πr ds).
     Nodal,
 }
 
@@ -134,6 +135,15 @@ pub struct PointToSegment {
     /// Per multiplier, what turns it into a pressure: 1 for the continuous method (λ is a
     /// pressure), the node's share of the slave surface for node-to-segment (λ is a force).
     node_weight: Vec<f64>,
+    /// Per multiplier, whether no point weighs it (the continuous method with nodal
+    /// integration at a node on the axis, where 2πr = 0; a node-to-segment node of zero
+    /// share): its row sets it to zero, and its pressure is its neighbours' limit.
+    weightless: Vec<bool>,
+    /// Per multiplier, whether its pressure is reported as its neighbours' limit (a node on
+    /// the axis, or weightless).
+    reported_from_neighbours: Vec<bool>,
+    /// Initial positions of the slave nodes (multiplier order).
+    mult_coords: Vec<[f64; 2]>,
 }
 
 /// Coefficients of a linear form over dofs: (dof, value).
@@ -204,10 +214,25 @@ impl PointToSegment {
                 vec![(-1.0, 1.0), (1.0, 1.0)]
             };
             if opts.node_to_segment {
-                for (a, &(xi, w)) in nodal.iter().enumerate() {
-                    let (p, t) = point_and_tangent(kind, &x0, xi);
-                    node_weight[mult_of[&mesh.cell_nodes(c)[a]]] +=
-                        w * t[0].hypot(t[1]) * measure_at(p);
+                if model == Modelisation::Axisymmetric {
+                    // ∫ N_a 2πr ds: the trapezoid / Simpson rule gives a node on the axis
+                    // no share at all
+                    let (gp, gw) = gauss_legendre(4);
+                    let mut nv = [0.0; MAX_NODES];
+                    for (q, &xi) in gp.iter().enumerate() {
+                        let (p, t) = point_and_tangent(kind, &x0, xi);
+                        shape(kind, [xi, 0.0], &mut nv);
+                        for (a, &n) in mesh.cell_nodes(c).iter().enumerate() {
+                            node_weight[mult_of[&n]] +=
+                                gw[q] * nv[a] * t[0].hypot(t[1]) * measure_at(p);
+                        }
+                    }
+                } else {
+                    for (a, &(xi, w)) in nodal.iter().enumerate() {
+                        let (p, t) = point_and_tangent(kind, &x0, xi);
+                        node_weight[mult_of[&mesh.cell_nodes(c)[a]]] +=
+                            w * t[0].hypot(t[1]) * measure_at(p);
+                    }
                 }
                 continue;
             }
@@ -218,12 +243,33 @@ impl PointToSegment {
                 }
                 Integration::Nodal => nodal,
             };
-            for (xi, w) in rule {
+            // Nodal integration in axisymmetry: each node's consistent share ∫ N_a 2πr ds
+            // (the nodal rule would give a node on the axis none, and its multiplier no row)
+            let shares: Option<Vec<f64>> = (model == Modelisation::Axisymmetric
+                && opts.integration == Integration::Nodal)
+                .then(|| {
+                    let (gp, gw) = gauss_legendre(4);
+                    let mut nv = [0.0; MAX_NODES];
+                    let mut share = vec![0.0; kind.num_nodes()];
+                    for (q, &xi) in gp.iter().enumerate() {
+                        let (p, t) = point_and_tangent(kind, &x0, xi);
+                        shape(kind, [xi, 0.0], &mut nv);
+                        for (a, v) in share.iter_mut().enumerate() {
+                            *v += gw[q] * nv[a] * t[0].hypot(t[1]) * measure_at(p);
+                        }
+                    }
+                    share
+                });
+            for (a, (xi, w)) in rule.into_iter().enumerate() {
                 let (p, t) = point_and_tangent(kind, &x0, xi);
+                let omega = match &shares {
+                    Some(share) => share[a],
+                    None => w * t[0].hypot(t[1]) * measure_at(p),
+                };
                 points.push(Point {
                     cell: ic,
                     xi,
-                    omega: w * t[0].hypot(t[1]) * measure_at(p),
+                    omega,
                     active: false,
                     excluded: false,
                     left_out: false,
@@ -264,6 +310,38 @@ impl PointToSegment {
                 master_cells_of_node.entry(n).or_default().push(im);
             }
         }
+        // multipliers no point weighs, and points of no weight (never active)
+        let weightless: Vec<bool> = if opts.node_to_segment {
+            // (a Seg3 corner at the pole of a curved face keeps ~1e-7 of a share)
+            let wmax = node_weight.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            node_weight.iter().map(|w| w.abs() <= 1e-6 * wmax).collect()
+        } else {
+            let mut weight = vec![0.0; mult_nodes.len()];
+            let mut nv = [0.0; MAX_NODES];
+            for p in &points {
+                let c = slave.cells[p.cell];
+                shape(mesh.kind(c), [p.xi, 0.0], &mut nv);
+                for (a, &n) in mesh.cell_nodes(c).iter().enumerate() {
+                    weight[mult_of[&n]] += p.omega * nv[a].abs();
+                }
+            }
+            let wmax = weight.iter().fold(0.0f64, |m, v| m.max(*v));
+            weight.iter().map(|&w| w <= 1e-12 * wmax).collect()
+        };
+        let wmax = points.iter().fold(0.0f64, |m, p| m.max(p.omega));
+        for p in points.iter_mut() {
+            if p.omega <= 1e-12 * wmax {
+                p.left_out = true;
+            }
+        }
+        let mult_coords: Vec<[f64; 2]> = mult_nodes.iter().map(|&n| mesh.coords[n]).collect();
+        // reported from the neighbours: a node on the axis, or of no weight
+        let on_axis = super::axis::on_axis(&mult_coords, model == Modelisation::Axisymmetric);
+        let reported_from_neighbours: Vec<bool> = weightless
+            .iter()
+            .zip(&on_axis)
+            .map(|(a, b)| *a || *b)
+            .collect();
         let n_points = points.len();
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         PointToSegment {
@@ -280,6 +358,9 @@ impl PointToSegment {
             pattern_sent: std::cell::Cell::new(None),
             u_start: vec![0.0; 2 * mesh.num_nodes()],
             node_weight,
+            weightless,
+            reported_from_neighbours,
+            mult_coords,
         }
     }
 
@@ -310,6 +391,30 @@ impl PointToSegment {
                     }
                 };
             self.points[i].active = active;
+        }
+        // A touching point of no weight (on the axis) holds nothing: the other points of its
+        // cell start active in its place (a body held by contact alone would start free).
+        let gap = self
+            .opts
+            .initial_gap
+            .unwrap_or_else(|| self.touch_tolerance(mesh));
+        let wmax = self.points.iter().fold(0.0f64, |m, p| m.max(p.omega));
+        for i in 0..self.points.len() {
+            let p = &self.points[i];
+            let weightless = p.omega <= 1e-12 * wmax && !self.opts.node_to_segment;
+            if weightless
+                && self.opts.initial == InitialStatus::Closed
+                && self.eval(mesh, &u, i).d >= -gap
+            {
+                let cell = p.cell;
+                for q in self
+                    .points
+                    .iter_mut()
+                    .filter(|q| q.cell == cell && !q.excluded)
+                {
+                    q.active = true;
+                }
+            }
         }
         self.saved_status = self.points.iter().map(|p| p.active).collect();
     }
@@ -685,11 +790,28 @@ impl PointToSegment {
                 self.friction_point(&fp, u, lam, ru, rl, k, ndof + mult_base);
             }
         }
+        // weightless multipliers (no point weighs them): λ = 0 by a row on the scale of the
+        // inactive ones (−ω λ / ρ)
+        let wmax = self.points.iter().fold(0.0f64, |m, p| m.max(p.omega));
+        for (m, _) in self.weightless.iter().enumerate().filter(|w| *w.1) {
+            if !self.opts.node_to_segment {
+                let s = wmax / rho;
+                rl[m] += -s * lam[m];
+                k.add(ndof + mult_base + m, ndof + mult_base + m, -s);
+            }
+        }
         if self.opts.friction.is_some() {
             // excluded nodes: Λ = 0 by a unit row
             let nm = self.mult_nodes.len();
             for &n in &self.opts.friction_excluded {
                 if let Some(&m) = self.mult_of.get(&n) {
+                    rl[nm + m] += lam[nm + m];
+                    k.add(ndof + mult_base + nm + m, ndof + mult_base + nm + m, 1.0);
+                }
+            }
+            for m in 0..nm {
+                let excluded = self.opts.friction_excluded.contains(&self.mult_nodes[m]);
+                if self.weightless[m] && !self.opts.node_to_segment && !excluded {
                     rl[nm + m] += lam[nm + m];
                     k.add(ndof + mult_base + nm + m, ndof + mult_base + nm + m, 1.0);
                 }
@@ -775,11 +897,17 @@ impl PointToSegment {
 
     /// Contact pressure at each slave node from the multipliers: (node, −λ).
     pub fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
-        self.mult_nodes
-            .iter()
-            .enumerate()
-            .map(|(k, &n)| (n, -lam[k] / self.node_weight[k]))
-            .collect()
+        let mut p: Vec<f64> = (0..self.mult_nodes.len())
+            .map(|k| {
+                if self.weightless[k] {
+                    0.0
+                } else {
+                    -lam[k] / self.node_weight[k]
+                }
+            })
+            .collect();
+        super::axis::fill_weightless(&self.mult_coords, &mut p, &self.reported_from_neighbours);
+        self.mult_nodes.iter().copied().zip(p).collect()
     }
 
     /// The friction terms' dependence on the geometry: the slip Δw = τ·(Σ N_s Δu_s −

@@ -117,6 +117,8 @@ pub struct Mortar {
     last_d: std::sync::Mutex<Vec<f64>>,
     /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
     cell_mults: Vec<Vec<usize>>,
+    /// Initial positions of the slave nodes (multiplier order).
+    mult_coords: Vec<[f64; 2]>,
 }
 
 /// Adds each slave cell's `found` master cells to its pattern candidates.
@@ -196,7 +198,9 @@ impl Mortar {
             switches: vec![],
             last_d: Default::default(),
             cell_mults,
+            mult_coords: vec![],
         };
+        m.mult_coords = m.mult_nodes.iter().map(|&n| mesh.coords[n]).collect();
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
         m.build_readers(mesh);
@@ -529,20 +533,14 @@ impl ContactPair for Mortar {
     fn nodal_pressures(&self, lam: &[f64]) -> Vec<(usize, f64)> {
         let mut p: Vec<f64> = lam[..self.mult_nodes.len()].to_vec();
         // A node of zero weight (∫ N_j dA = 0: the Seg3 corner on the axis in axisymmetry)
-        // carries no multiplier; its pressure is extrapolated from its cell's other nodes
-        // (mid-side at ξ = 0, far corner at ξ = 1: p = 2 p_mid − p_far).
+        // carries no multiplier: its pressure is its neighbours' limit.
         let d = self.last_d.lock().unwrap();
         let dmax = d.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let weightless = |k: usize| d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax);
-        for nodes in &self.cell_mults {
-            if let [a, b, mid] = nodes[..] {
-                for (end, far) in [(a, b), (b, a)] {
-                    if weightless(end) && !weightless(far) && !weightless(mid) {
-                        p[end] = 2.0 * lam[mid] - lam[far];
-                    }
-                }
-            }
-        }
+        let axis = crate::contact::axis::on_axis(&self.mult_coords, self.axisymmetric);
+        let weightless: Vec<bool> = (0..p.len())
+            .map(|k| axis[k] || d.get(k).is_some_and(|v| v.abs() <= 1e-12 * dmax))
+            .collect();
+        crate::contact::axis::fill_weightless(&self.mult_coords, &mut p, &weightless);
         self.mult_nodes.iter().copied().zip(p).collect()
     }
 
