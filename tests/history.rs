@@ -31,8 +31,10 @@ name = "there-and-back"
 table = [[0, 0], [0.5, 1], [2, -2]]
 [[displacement]]
 group = "Left"
-dx = 0.0
 dy = 0.0
+[[displacement]]
+group = "TopLeft"
+dx = 0.0
 [[displacement]]
 group = "Bottom"
 dx = 0.01

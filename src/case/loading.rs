@@ -61,6 +61,10 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
     let ndof = 2 * mesh.num_nodes();
     let mut fixed = vec![];
     let mut imposed = vec![];
+    // which entry imposes each dof, with its value and function: a dof imposed twice must
+    // be imposed alike
+    let mut by: std::collections::HashMap<usize, (String, f64, Option<String>)> =
+        std::collections::HashMap::new();
     for spec in &case.displacement {
         let what = format!("[[displacement]] on '{}'", spec.group);
         let function = lookup(&funcs, &spec.function, &what)?;
@@ -75,6 +79,26 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
             if let Some(v) = spec.dy {
                 dofs.push((2 * n + 1, v));
             }
+        }
+        for &(d, v) in &dofs {
+            let entry = (what.clone(), v, spec.function.clone());
+            if let Some(prev) = by.get(&d) {
+                if prev.1 != v || prev.2 != spec.function {
+                    return Err(Error::model(format!(
+                        "{what}: node {} {} = {v} is also imposed by {} as {}{}",
+                        d / 2 + 1,
+                        ["dx", "dy"][d % 2],
+                        prev.0,
+                        prev.1,
+                        if prev.2 != spec.function {
+                            " with another function"
+                        } else {
+                            ""
+                        }
+                    )));
+                }
+            }
+            by.insert(d, entry);
         }
         fixed.extend_from_slice(&dofs);
         imposed.push(Imposed::Scaled { dofs, function });
@@ -97,7 +121,10 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
                 "{what}: angle, center, dx and dy must be finite numbers"
             )));
         }
-        if let Some(&n) = nodes.iter().find(|&&n| by_displacement[2 * n]) {
+        if let Some(&n) = nodes
+            .iter()
+            .find(|&&n| by_displacement[2 * n] || by_displacement[2 * n + 1])
+        {
             return Err(Error::model(format!(
                 "{what}: node {} also has a [[displacement]]; a node's motion is imposed once",
                 n + 1

@@ -3,9 +3,11 @@
 //! | file | what |
 //! |---|---|
 //! | `schema.rs` | serde structs of the TOML format (unknown keys rejected) |
+//! | `checks.rs` | every value finite and in range, every key meaningful, before any work |
 //! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
 
+pub mod checks;
 pub mod loading;
 pub mod schema;
 pub mod ssnp154;
@@ -51,6 +53,7 @@ fn need<T: Copy>(v: Option<T>, key: &str, generator: &str) -> Result<T> {
 
 /// Builds the mesh of a case: a file (relative to `dir`) or a generator.
 pub fn build_mesh(spec: &schema::MeshSpec, dir: &Path) -> Result<Mesh> {
+    checks::check_mesh_spec(spec)?;
     match (&spec.file, &spec.generator) {
         (Some(f), None) => {
             let p = dir.join(f);
@@ -122,6 +125,7 @@ fn dof_index(node: usize, dof: &str, what: &str) -> Result<usize> {
 
 /// The assembled problem of a case, ready to solve.
 pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem<'m>> {
+    checks::check(case)?;
     let m = &case.model;
     if m.modelisation == Modelisation::PlaneStress && m.kinematics == Kinematics::Large {
         return Err(Error::model(
@@ -158,6 +162,15 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
         }
         materials.push(Elastic::new(spec.young, spec.nu, &what)?);
         for &c in cells {
+            if let Some(j) = material_of[c] {
+                return Err(Error::model(format!(
+                    "{what}: cell {} is also in group '{}' of [[material]] {}: a cell has one \
+                     material",
+                    c + 1,
+                    case.material[j].group,
+                    j + 1
+                )));
+            }
             material_of[c] = Some(i);
         }
     }

@@ -224,7 +224,9 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         // (INTERPENETRE); the points within 0.1 mm give the same state in fewer iterations.
         let k = c.contact.last_mut().unwrap();
         k.friction = 0.1;
-        k.integration = "nodal".into();
+        if k.formulation != "mortar" {
+            k.integration = "nodal".into();
+        }
         k.friction_exclude = vec!["C".into()];
     }
     c

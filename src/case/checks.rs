@@ -1,0 +1,380 @@
+//! Checks of a case before any work: every number finite and in its range, every entry
+//! meaningful for the chosen options, names that are safe as file names and CSV columns,
+//! sizes within bounds. Each error names the entry and what was expected. (Checks that need
+//! the mesh, such as a cell in two material groups or one dof imposed twice with different
+//! values, are made where the mesh is read: `build_problem` and `loading::build`.)
+
+use super::schema::{CaseFile, MeshSpec};
+use crate::error::{Error, Result};
+use crate::fem::material::Modelisation;
+
+/// Most load steps a history may have (a million steps of a small model is hours of work;
+/// more is a typo).
+pub const MAX_STEPS: usize = 1_000_000;
+/// Most Newton iterations per step.
+pub const MAX_ITERATIONS: usize = 10_000;
+/// Largest accepted relative residual tolerance: above it a "converged" step may be far
+/// from equilibrium (a residual of 2 % called converged).
+pub const MAX_TOLERANCE: f64 = 1e-2;
+/// Most cells a generator may make (≈ 10 GB of solver memory).
+pub const MAX_GENERATED_CELLS: usize = 20_000_000;
+
+/// "[solver] end_time", "[[force]] 2 on 'Top': fx".
+fn key_of(what: &str, key: &str) -> String {
+    if what.starts_with('[') && what.ends_with(']') && !what.contains(' ') {
+        format!("{what} {key}")
+    } else {
+        format!("{what}: {key}")
+    }
+}
+
+fn finite(v: f64, what: &str, key: &str) -> Result<()> {
+    if v.is_finite() {
+        Ok(())
+    } else {
+        Err(Error::model(format!(
+            "{} must be a finite number, got {v}",
+            key_of(what, key)
+        )))
+    }
+}
+
+fn positive(v: f64, what: &str, key: &str) -> Result<()> {
+    finite(v, what, key)?;
+    if v > 0.0 {
+        Ok(())
+    } else {
+        Err(Error::model(format!(
+            "{} must be positive, got {v}",
+            key_of(what, key)
+        )))
+    }
+}
+
+/// A name used in a file name or a CSV column: letters, digits, `_`, `-`, `.`, not
+/// starting with `.` (no path separator, no `..`, no comma, quote or line break).
+fn safe_name(name: &str, what: &str) -> Result<()> {
+    let ok = !name.is_empty()
+        && !name.starts_with('.')
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.'));
+    if ok {
+        Ok(())
+    } else {
+        Err(Error::model(format!(
+            "{what}: name '{}' must be made of letters, digits, '_', '-' and '.' and not start \
+             with '.' (it names an output file or column)",
+            name.escape_debug()
+        )))
+    }
+}
+
+/// The checks of a case that need no mesh.
+pub fn check(case: &CaseFile) -> Result<()> {
+    check_mesh_spec(&case.mesh)?;
+    let m = &case.model;
+    positive(m.thickness, "[model]", "thickness")?;
+    if m.modelisation == Modelisation::Axisymmetric && m.thickness != 1.0 {
+        return Err(Error::model(format!(
+            "[model] thickness = {} does nothing in an axisymmetric model (loads are per full \
+             ring); remove it",
+            m.thickness
+        )));
+    }
+    for (i, a) in case.material.iter().enumerate() {
+        if let Some(j) = case.material[..i].iter().position(|b| b.group == a.group) {
+            return Err(Error::model(format!(
+                "[[material]] {} and {} are both for group '{}': give one material per group",
+                j + 1,
+                i + 1,
+                a.group
+            )));
+        }
+    }
+    for (i, f) in case.function.iter().enumerate() {
+        let what = format!("[[function]] {} ('{}')", i + 1, f.name);
+        if f.name.is_empty() {
+            return Err(Error::model(format!("{what}: the name is empty")));
+        }
+        for p in &f.table {
+            finite(p[0], &what, "table time")?;
+            finite(p[1], &what, "table value")?;
+        }
+    }
+    for (i, d) in case.displacement.iter().enumerate() {
+        let what = format!("[[displacement]] {} on '{}'", i + 1, d.group);
+        if d.dx.is_none() && d.dy.is_none() {
+            return Err(Error::model(format!(
+                "{what} imposes nothing: give dx, dy or both"
+            )));
+        }
+        for (k, v) in [("dx", d.dx), ("dy", d.dy)] {
+            if let Some(v) = v {
+                finite(v, &what, k)?;
+            }
+        }
+    }
+    for (i, f) in case.force.iter().enumerate() {
+        let what = format!("[[force]] {} on '{}'", i + 1, f.group);
+        finite(f.fx, &what, "fx")?;
+        finite(f.fy, &what, "fy")?;
+    }
+    for (i, p) in case.pressure.iter().enumerate() {
+        finite(
+            p.p,
+            &format!("[[pressure]] {} on '{}'", i + 1, p.group),
+            "p",
+        )?;
+    }
+    for (i, t) in case.traction.iter().enumerate() {
+        let what = format!("[[traction]] {} on '{}'", i + 1, t.group);
+        finite(t.tx, &what, "tx")?;
+        finite(t.ty, &what, "ty")?;
+    }
+    for (i, r) in case.relation.iter().enumerate() {
+        let what = format!("[[relation]] {} ('{}')", i + 1, r.name);
+        finite(r.rhs, &what, "rhs")?;
+        if r.terms.is_empty() {
+            return Err(Error::model(format!("{what} has no terms")));
+        }
+        for t in &r.terms {
+            finite(t.coef, &what, &format!("coef of {} {}", t.group, t.dof))?;
+        }
+        if r.terms.iter().all(|t| t.coef == 0.0) {
+            return Err(Error::model(format!(
+                "{what}: every coefficient is zero, the relation says nothing"
+            )));
+        }
+        if !r.name.is_empty() {
+            if let Some(j) = case.relation[..i].iter().position(|q| q.name == r.name) {
+                return Err(Error::model(format!(
+                    "{what}: relation {} has the same name",
+                    j + 1
+                )));
+            }
+        }
+    }
+    check_contacts(case)?;
+    check_solver_and_output(case)
+}
+
+fn check_contacts(case: &CaseFile) -> Result<()> {
+    for (i, c) in case.contact.iter().enumerate() {
+        let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
+        positive(c.rho, &what, "rho")?;
+        positive(c.rho_f, &what, "rho_f")?;
+        finite(c.friction, &what, "friction")?;
+        if let Some(g) = c.initial_gap {
+            finite(g, &what, "initial_gap")?;
+        }
+        if let Some(k) = c.penalty {
+            positive(k, &what, "penalty")?;
+        }
+        if let Some(a) = c.adjust {
+            finite(a, &what, "adjust")?;
+        }
+        if c.friction == 0.0 && !c.friction_exclude.is_empty() {
+            return Err(Error::model(format!(
+                "{what}: friction_exclude does nothing without friction"
+            )));
+        }
+        if c.formulation == "mortar" {
+            let idle = [
+                ("rho", c.rho != 100.0),
+                ("rho_f", c.rho_f != 100.0),
+                ("integration", c.integration != "gauss"),
+            ];
+            if let Some((key, _)) = idle.iter().find(|k| k.1) {
+                return Err(Error::model(format!(
+                    "{what}: {key} does nothing with mortar (its complementarity parameter \
+                     comes from the bodies' stiffness and cell size; it integrates the overlap \
+                     segments itself)"
+                )));
+            }
+        }
+        if c.formulation == "mortar" && c.gauss_points != 3 {
+            return Err(Error::model(format!(
+                "{what}: gauss_points does nothing with mortar (it integrates every overlap \
+                 segment exactly enough by itself)"
+            )));
+        }
+        if c.integration == "nodal" && c.gauss_points != 3 {
+            return Err(Error::model(format!(
+                "{what}: gauss_points does nothing with integration = \"nodal\""
+            )));
+        }
+        for (j, d) in case.contact[..i].iter().enumerate() {
+            let same = (d.slave == c.slave && d.master == c.master)
+                || (d.slave == c.master && d.master == c.slave);
+            if same {
+                return Err(Error::model(format!(
+                    "{what}: [[contact]] {} is between the same two surfaces",
+                    j + 1
+                )));
+            }
+        }
+    }
+    Ok(())
+}
+
+fn check_solver_and_output(case: &CaseFile) -> Result<()> {
+    let s = &case.solver;
+    if s.steps == 0 || s.steps > MAX_STEPS {
+        return Err(Error::model(format!(
+            "[solver] steps must lie in 1..={MAX_STEPS}, got {}",
+            s.steps
+        )));
+    }
+    if s.max_iterations == 0 || s.max_iterations > MAX_ITERATIONS {
+        return Err(Error::model(format!(
+            "[solver] max_iterations must lie in 1..={MAX_ITERATIONS}, got {}",
+            s.max_iterations
+        )));
+    }
+    if !(s.tolerance.is_finite() && s.tolerance > 0.0 && s.tolerance <= MAX_TOLERANCE) {
+        return Err(Error::model(format!(
+            "[solver] tolerance (relative residual) must lie in (0, {MAX_TOLERANCE}], got {}",
+            s.tolerance
+        )));
+    }
+    if let Some(t) = s.end_time {
+        positive(t, "[solver]", "end_time")?;
+    }
+    let o = &case.output;
+    if let Some(t) = &o.times {
+        if t.is_empty() {
+            return Err(Error::model(
+                "[output] times is empty: give output times, or remove the key for every step",
+            ));
+        }
+        for &x in t {
+            finite(x, "[output]", "times")?;
+        }
+    }
+    if let Some(h) = &o.hertz {
+        positive(h.a, "[output] hertz", "a")?;
+        positive(h.p0, "[output] hertz", "p0")?;
+    }
+    for (i, p) in o.probe.iter().enumerate() {
+        let what = format!("[[output.probe]] {}", i + 1);
+        safe_name(&p.name, &what)?;
+        if let Some(j) = o.probe[..i].iter().position(|q| q.name == p.name) {
+            return Err(Error::model(format!(
+                "{what}: [[output.probe]] {} has the same name '{}'",
+                j + 1,
+                p.name
+            )));
+        }
+        if p.name.starts_with("rx_") || p.name.starts_with("ry_") {
+            return Err(Error::model(format!(
+                "{what}: name '{}' would clash with a reaction column of history.csv \
+                 (rx_GROUP, ry_GROUP)",
+                p.name
+            )));
+        }
+        if let Some(a) = p.at {
+            finite(a[0], &what, "at")?;
+            finite(a[1], &what, "at")?;
+        }
+    }
+    for (i, c) in o.curve.iter().enumerate() {
+        let what = format!("[[output.curve]] {}", i + 1);
+        safe_name(&c.name, &what)?;
+        if let Some(j) = o.curve[..i].iter().position(|q| q.name == c.name) {
+            return Err(Error::model(format!(
+                "{what}: [[output.curve]] {} has the same name '{}'",
+                j + 1,
+                c.name
+            )));
+        }
+    }
+    Ok(())
+}
+
+/// The [mesh] keys: those of the chosen generator only, counts within bounds.
+pub fn check_mesh_spec(spec: &MeshSpec) -> Result<()> {
+    let given: Vec<(&str, bool)> = vec![
+        ("size", spec.size.is_some()),
+        ("stretch", spec.stretch.is_some()),
+        ("radius", spec.radius.is_some()),
+        ("cell", spec.cell.is_some()),
+        ("origin", spec.origin.is_some()),
+        ("width", spec.width.is_some()),
+        ("height", spec.height.is_some()),
+        ("nx", spec.nx.is_some()),
+        ("ny", spec.ny.is_some()),
+        ("distortion", spec.distortion != 0.0),
+        ("r_in", spec.r_in.is_some()),
+        ("r_out", spec.r_out.is_some()),
+        ("n_r", spec.n_r.is_some()),
+        ("n_theta", spec.n_theta.is_some()),
+        ("angle", spec.angle.is_some()),
+        ("quadratic", spec.quadratic),
+    ];
+    let allowed: &[&str] = match spec.generator.as_deref() {
+        None => &[],
+        Some("ssnp154") => &["size", "quadratic"],
+        Some("disc_pair") => &["size", "stretch", "radius", "quadratic"],
+        Some("rectangle") => &[
+            "cell",
+            "origin",
+            "width",
+            "height",
+            "nx",
+            "ny",
+            "distortion",
+        ],
+        Some("ring") => &["cell", "r_in", "r_out", "n_r", "n_theta", "angle"],
+        Some(_) => return Ok(()), // the unknown generator is reported by build_mesh
+    };
+    if let Some((key, _)) = given.iter().find(|(k, g)| *g && !allowed.contains(k)) {
+        let source = match &spec.generator {
+            Some(g) => format!("the '{g}' generator"),
+            None => "a mesh file".to_string(),
+        };
+        return Err(Error::model(format!(
+            "[mesh] {key} does nothing with {source}{}",
+            if allowed.is_empty() {
+                String::new()
+            } else {
+                format!(" (its keys: {})", allowed.join(", "))
+            }
+        )));
+    }
+    for (key, v) in [
+        ("width", spec.width),
+        ("height", spec.height),
+        ("r_in", spec.r_in),
+        ("r_out", spec.r_out),
+        ("angle", spec.angle),
+        ("size", spec.size),
+        ("radius", spec.radius),
+        ("stretch", spec.stretch),
+    ] {
+        if let Some(v) = v {
+            finite(v, "[mesh]", key)?;
+        }
+    }
+    if let Some(o) = spec.origin {
+        finite(o[0], "[mesh]", "origin")?;
+        finite(o[1], "[mesh]", "origin")?;
+    }
+    finite(spec.distortion, "[mesh]", "distortion")?;
+    let cells = |a: Option<usize>, b: Option<usize>| {
+        a.unwrap_or(1)
+            .checked_mul(b.unwrap_or(1))
+            .and_then(|n| n.checked_mul(2))
+    };
+    for (keys, n) in [
+        ("nx × ny", cells(spec.nx, spec.ny)),
+        ("n_r × n_theta", cells(spec.n_r, spec.n_theta)),
+    ] {
+        if n.is_none_or(|n| n > MAX_GENERATED_CELLS) {
+            return Err(Error::model(format!(
+                "[mesh] {keys} asks for more than {MAX_GENERATED_CELLS} cells"
+            )));
+        }
+    }
+    Ok(())
+}
