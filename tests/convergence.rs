@@ -1,7 +1,9 @@
 //! Manufactured-solution convergence: u = ∇ψ with ψ = eˣ sin y is harmonic, so div u = 0 and
 //! Δu = 0, and u solves the Navier equations without body force for any λ, μ. Dirichlet
 //! data on the whole boundary of [0,1]²; errors in L2 and in the energy norm against the
-//! exact field, integrated with a high-order rule; rates fitted over 4 levels.
+//! exact field, integrated with a high-order rule; rates fitted over 4 levels. The field is
+//! scaled to strains of 0.1 % (the problem is linear: the rates do not depend on it), so that
+//! no cell turns inside out, which a solve does not accept as a state.
 
 mod common;
 use common::*;
@@ -12,14 +14,19 @@ use tribo::fem::solid::{point_geometry, strain_at, SolidModel};
 use tribo::mesh::generate::rectangle;
 use tribo::mesh::CellKind;
 
+const SCALE: f64 = 1e-3;
+
 fn exact(x: [f64; 2]) -> [f64; 2] {
-    [x[0].exp() * x[1].sin(), x[0].exp() * x[1].cos()]
+    [
+        SCALE * x[0].exp() * x[1].sin(),
+        SCALE * x[0].exp() * x[1].cos(),
+    ]
 }
 
 /// Exact small strain [xx, yy, zz, γxy].
 fn exact_strain(x: [f64; 2]) -> [f64; 4] {
     let (e, s, c) = (x[0].exp(), x[1].sin(), x[1].cos());
-    [e * s, -e * s, 0.0, 2.0 * e * c]
+    [SCALE * e * s, -SCALE * e * s, 0.0, 2.0 * SCALE * e * c]
 }
 
 fn errors(kind: CellKind, n: usize, sm: &SolidModel) -> (f64, f64, f64) {

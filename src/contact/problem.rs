@@ -62,6 +62,9 @@ impl<'m> ContactProblem<'m> {
 }
 
 impl Nonlinear for ContactProblem<'_> {
+    fn state_defect(&self) -> Option<String> {
+        self.solid.solid_defect()
+    }
     fn num_unknowns(&self) -> usize {
         self.solid.num_free() + self.lam.len()
     }

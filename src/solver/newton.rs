@@ -41,6 +41,11 @@ pub trait Nonlinear {
         self.evaluate(x, lambda, r, true)
     }
     fn matrix(&self) -> &SparseMatrix;
+    /// Why the current (converged) state is not admissible, if it is not: e.g. cells turned
+    /// inside out. Such a state is not accepted as converged (the step is cut).
+    fn state_defect(&self) -> Option<String> {
+        None
+    }
     /// Updates discrete statuses (contact) from the new iterate; returns how many changed.
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
         Ok(0)
@@ -432,6 +437,10 @@ pub fn solve(
                     || (last_size <= 1e-10 * problem.length_scale()
                         && norms.constraint <= settings.tolerance))
             {
+                if let Some(defect) = problem.state_defect() {
+                    failure = Some(defect);
+                    break;
+                }
                 step.converged = true;
                 break;
             }

@@ -171,7 +171,62 @@ impl<'m> SolidProblem<'m> {
     }
 }
 
+impl SolidProblem<'_> {
+    /// The cells whose deformed shape (X + u) is turned inside out or flat: det J ≤ 0 at a
+    /// corner or the centre. With small kinematics too: such a displacement field is far
+    /// outside the theory, whatever its strains say.
+    pub fn inverted_cells(&self) -> Vec<usize> {
+        use crate::fem::element::{jacobian_det, reference_nodes};
+        use rayon::prelude::*;
+        let mesh = self.mesh;
+        self.asm
+            .cells
+            .par_iter()
+            .copied()
+            .filter(|&c| {
+                let kind = mesh.kind(c);
+                let x: Vec<[f64; 2]> = mesh
+                    .cell_nodes(c)
+                    .iter()
+                    .map(|&n| {
+                        [
+                            mesh.coords[n][0] + self.u[2 * n],
+                            mesh.coords[n][1] + self.u[2 * n + 1],
+                        ]
+                    })
+                    .collect();
+                let centre = if kind.num_corners() == 3 {
+                    [1.0 / 3.0, 1.0 / 3.0]
+                } else {
+                    [0.0, 0.0]
+                };
+                reference_nodes(kind)
+                    .iter()
+                    .take(kind.num_corners())
+                    .copied()
+                    .chain(std::iter::once(centre))
+                    .any(|xi| jacobian_det(kind, &x, xi) <= 0.0)
+            })
+            .collect()
+    }
+
+    /// `Nonlinear::state_defect` of the bodies: inverted cells.
+    pub fn solid_defect(&self) -> Option<String> {
+        let bad = self.inverted_cells();
+        let first = bad.first()?;
+        Some(format!(
+            "{} cells are turned inside out (det J <= 0), cell {} first: the load or imposed \
+             motion is far beyond what the model can carry",
+            bad.len(),
+            first + 1
+        ))
+    }
+}
+
 impl Nonlinear for SolidProblem<'_> {
+    fn state_defect(&self) -> Option<String> {
+        self.solid_defect()
+    }
     fn num_unknowns(&self) -> usize {
         self.asm.dofs.num_free
     }
