@@ -55,6 +55,7 @@ fn positive(v: f64, what: &str, key: &str) -> Result<()> {
 /// starting with `.` (no path separator, no `..`, no comma, quote or line break).
 fn safe_name(name: &str, what: &str) -> Result<()> {
     let ok = !name.is_empty()
+        && name.len() <= 100
         && !name.starts_with('.')
         && name
             .chars()
@@ -63,8 +64,8 @@ fn safe_name(name: &str, what: &str) -> Result<()> {
         Ok(())
     } else {
         Err(Error::model(format!(
-            "{what}: name '{}' must be made of letters, digits, '_', '-' and '.' and not start \
-             with '.' (it names an output file or column)",
+            "{what}: name '{}' must be made of letters, digits, '_', '-' and '.', at most 100 \
+             of them, and not start with '.' (it names an output file or column)",
             name.escape_debug()
         )))
     }

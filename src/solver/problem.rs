@@ -29,6 +29,10 @@ pub struct SolidProblem<'m> {
     /// The free unknowns `fint` was assembled at, and whether the tangent was too (an
     /// evaluation at the same state, e.g. an active-set re-solve, assembles nothing).
     assembled_at: Option<(Vec<f64>, bool)>,
+    /// The smallest force scale of the residual: without loads (a zero load, a history
+    /// that comes back to zero) the residual is measured against the force of a strain of
+    /// 1e-12 over the model, E L t (E L 2πL in axisymmetry), not against round-off.
+    force_floor: f64,
 }
 
 /// Max-norms used by the convergence test (as the reference code: displacement rows only).
@@ -73,7 +77,27 @@ impl<'m> SolidProblem<'m> {
             residual_full: vec![0.0; n],
             time: f64::NAN,
             assembled_at: None,
+            force_floor: 0.0,
         }
+        .with_force_floor()
+    }
+
+    fn with_force_floor(mut self) -> Self {
+        use crate::fem::material::Modelisation;
+        let l = self.length_scale();
+        self.force_floor = self
+            .asm
+            .cell_model
+            .iter()
+            .map(|m| {
+                let t = match m.model {
+                    Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * l,
+                    _ => m.thickness,
+                };
+                1e-12 * m.material.young * l * t
+            })
+            .fold(0.0, f64::max);
+        self
     }
 
     /// Moves the loads to time t.
@@ -132,7 +156,10 @@ impl<'m> SolidProblem<'m> {
         }
         self.asm.dofs.reduce(&self.residual_full, r);
         let residual = r.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut reference = self.fext.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let mut reference = self
+            .fext
+            .iter()
+            .fold(self.force_floor, |m, v| m.max(v.abs()));
         for (d, role) in self.asm.dofs.roles.iter().enumerate() {
             if !matches!(role, Role::Free(_)) {
                 reference = reference.max(self.residual_full[d].abs());
