@@ -270,3 +270,44 @@ fn the_multipliers_go_on_the_coarser_arc_whatever_the_naming() {
         assert_eq!(pairs[0].surfaces().1.group, "Upper_arc");
     }
 }
+
+/// Unequal bodies (the lower disc three times softer, as SSNP154's block): the interface
+/// normal weighs the two surfaces' normals by the other body's compliance, so the answer
+/// is still the same whichever side carries the multipliers, and Hertz's (with
+/// 1/E* = (1 − ν²)/E1 + (1 − ν²)/E2).
+#[test]
+fn unequal_cylinders_match_hertz_whichever_side_is_the_slave() {
+    let soft = 70000.0;
+    let e_star = 1.0 / ((1.0 - NU * NU) / E + (1.0 - NU * NU) / soft);
+    let p = 2.0 * 17500.0;
+    let a = (4.0 * p * (R / 2.0) / (std::f64::consts::PI * e_star)).sqrt();
+    let p0 = 2.0 * p / (std::f64::consts::PI * a);
+    let mut peaks = vec![];
+    for slave_upper in [true, false] {
+        let text = case_text(false, true, 0.25, slave_upper, 1.15);
+        let lower = text.rfind(&format!("E = {E}")).unwrap();
+        let text = format!(
+            "{}E = {soft}{}",
+            &text[..lower],
+            &text[lower + format!("E = {E}").len()..]
+        );
+        let c: CaseFile = toml::from_str(&text).unwrap();
+        let mesh = case::build_mesh(&c.mesh, Path::new("")).unwrap();
+        let out = case::run(&c, &mesh, false).unwrap();
+        let samples: Vec<(f64, f64)> = out.contact_pressure[0]
+            .iter()
+            .map(|&(n, p)| (mesh.coords[n][0], p))
+            .collect();
+        let peak = samples.iter().fold(0.0f64, |m, s| m.max(s.1));
+        let hw = half_width(&samples).unwrap();
+        println!(
+            "slave upper {slave_upper}: peak {:+.3} %, half-width {:+.3} %",
+            100.0 * (peak / p0 - 1.0),
+            100.0 * (hw / a - 1.0)
+        );
+        assert!((peak / p0 - 1.0).abs() < 0.01, "peak {peak} vs {p0}");
+        assert!((hw / a - 1.0).abs() < 0.01, "a {hw} vs {a}");
+        peaks.push(peak);
+    }
+    assert!((peaks[0] / peaks[1] - 1.0).abs() < 0.01, "{peaks:?}");
+}

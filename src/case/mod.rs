@@ -472,6 +472,20 @@ fn multiplier_indices(
 
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
+    // per cell, the compliance of its material (1 when it has none: an obstacle's cells
+    // all have one, but a malformed case is reported elsewhere)
+    let mut compliance = vec![1.0; mesh.num_cells()];
+    for spec in &case.material {
+        let c = match case.model.modelisation {
+            Modelisation::PlaneStress => 1.0 / spec.young,
+            _ => (1.0 - spec.nu * spec.nu) / spec.young,
+        };
+        if let Ok(cells) = mesh.cell_group(&spec.group) {
+            for &cell in cells {
+                compliance[cell] = c;
+            }
+        }
+    }
     let bodies = crate::mesh::topology::node_bodies(mesh);
     for (i, c) in case.contact.iter().enumerate() {
         let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
@@ -604,6 +618,10 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 );
                 mortar.initial_gap = c.initial_gap;
                 mortar.adjust = c.adjust;
+                let of = |s: &Surface| -> Vec<f64> {
+                    s.parent.iter().map(|&p| compliance[p]).collect()
+                };
+                mortar.compliance = (of(&mortar.slave), of(&mortar.master));
                 // a micro-strain of the softest body: below it a pressure is round-off
                 mortar.pressure_floor = 1e-6 * e_min;
                 if c.friction > 0.0 {

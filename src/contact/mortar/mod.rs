@@ -119,6 +119,10 @@ pub struct Mortar {
     cell_mults: Vec<Vec<usize>>,
     /// Initial positions of the slave nodes (multiplier order).
     mult_coords: Vec<[f64; 2]>,
+    /// Compliance (1 − ν²)/E (plane stress: 1/E) of the body under each slave cell and
+    /// each master cell: the weights of the small-kinematics interface normal (equal by
+    /// default: the bisector).
+    pub compliance: (Vec<f64>, Vec<f64>),
 }
 
 /// Adds each slave cell's `found` master cells to its pattern candidates.
@@ -199,7 +203,12 @@ impl Mortar {
             last_d: Default::default(),
             cell_mults,
             mult_coords: vec![],
+            compliance: (vec![], vec![]),
         };
+        m.compliance = (
+            vec![1.0; m.slave.cells.len()],
+            vec![1.0; m.master.cells.len()],
+        );
         m.mult_coords = m.mult_nodes.iter().map(|&n| mesh.coords[n]).collect();
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();

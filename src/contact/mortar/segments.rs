@@ -171,10 +171,16 @@ impl Mortar {
                     // surfaces in contact are not yet parallel: the slave's normal alone
                     // would push the master obliquely (a tangential traction on a
                     // frictionless contact, and the interface shifted toward the slave).
-                    // The bisector of the two outward normals is the same whichever side is
-                    // the slave, and equals either normal where they face each other.
+                    // The deformed interface lies between the two surfaces, the softer one
+                    // conforming to the stiffer (Hertz: each surface moves in proportion to
+                    // its compliance), so its normal is the compliance-weighted mean
+                    // c_m n_s − c_s n_m: the bisector for equal bodies, the stiff side's
+                    // normal against a much softer one, and the same whichever side is the
+                    // slave.
                     let nm = self.master_normal(mesh, u, im, xim);
-                    let b = [nhat[0] - nm[0], nhat[1] - nm[1]];
+                    let (cs, cm) = (self.compliance.0[ic], self.compliance.1[im]);
+                    let (ws, wm) = if cs + cm > 0.0 { (cm, cs) } else { (1.0, 1.0) };
+                    let b = [ws * nhat[0] - wm * nm[0], ws * nhat[1] - wm * nm[1]];
                     let lb = b[0].hypot(b[1]);
                     if lb > 1e-12 {
                         nhat = [b[0] / lb, b[1] / lb];
