@@ -163,8 +163,12 @@ pub fn check(case: &CaseFile) -> Result<()> {
 fn check_contacts(case: &CaseFile) -> Result<()> {
     for (i, c) in case.contact.iter().enumerate() {
         let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
-        positive(c.rho, &what, "rho")?;
-        positive(c.rho_f, &what, "rho_f")?;
+        if let Some(r) = c.rho {
+            positive(r, &what, "rho")?;
+        }
+        if let Some(r) = c.rho_f {
+            positive(r, &what, "rho_f")?;
+        }
         finite(c.friction, &what, "friction")?;
         if let Some(g) = c.initial_gap {
             finite(g, &what, "initial_gap")?;
@@ -175,6 +179,11 @@ fn check_contacts(case: &CaseFile) -> Result<()> {
         if let Some(a) = c.adjust {
             finite(a, &what, "adjust")?;
         }
+        if c.friction == 0.0 && c.rho_f.is_some() {
+            return Err(Error::model(format!(
+                "{what}: rho_f does nothing without friction"
+            )));
+        }
         if c.friction == 0.0 && !c.friction_exclude.is_empty() {
             return Err(Error::model(format!(
                 "{what}: friction_exclude does nothing without friction"
@@ -182,8 +191,8 @@ fn check_contacts(case: &CaseFile) -> Result<()> {
         }
         if c.formulation == "mortar" {
             let idle = [
-                ("rho", c.rho != 100.0),
-                ("rho_f", c.rho_f != 100.0),
+                ("rho", c.rho.is_some()),
+                ("rho_f", c.rho_f.is_some()),
                 ("integration", c.integration != "gauss"),
             ];
             if let Some((key, _)) = idle.iter().find(|k| k.1) {

@@ -440,6 +440,26 @@ fn group_nodes(mesh: &Mesh, groups: &[String], what: &str, key: &str) -> Result<
     Ok(nodes)
 }
 
+/// The smallest Young's modulus of the case and the shortest cell chord of `slave`: the
+/// scales of the contact parameters' defaults (no units in a default).
+fn stiffness_scale(case: &CaseFile, mesh: &Mesh, slave: &Surface) -> (f64, f64) {
+    let e_min = case
+        .material
+        .iter()
+        .map(|m| m.young)
+        .fold(f64::INFINITY, f64::min);
+    let h_min = slave
+        .cells
+        .iter()
+        .map(|&e| {
+            let n = mesh.cell_nodes(e);
+            let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        })
+        .fold(f64::INFINITY, f64::min);
+    (e_min, h_min)
+}
+
 /// The multiplier indices of `nodes` on a mortar pair: a node of the surface that carries
 /// the multipliers, or one at the same place on the other surface (the pair may have put
 /// the multipliers on the surface the user named master); Err(node) for a node on neither.
@@ -546,22 +566,10 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 )));
             }
         }
-        if c.rho.is_nan() || c.rho <= 0.0 {
-            return Err(Error::model(format!(
-                "{what}: rho must be positive, got {}",
-                c.rho
-            )));
-        }
         if c.friction.is_nan() || c.friction < 0.0 {
             return Err(Error::model(format!(
                 "{what}: friction must be 0 or positive, got {}",
                 c.friction
-            )));
-        }
-        if c.rho_f.is_nan() || c.rho_f <= 0.0 {
-            return Err(Error::model(format!(
-                "{what}: rho_f must be positive, got {}",
-                c.rho_f
             )));
         }
         if let Some(a) = c.adjust {
@@ -644,6 +652,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 )))
             }
         }
+        // scale-free defaults: the softest body's modulus over the shortest slave cell
+        let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
         let friction_excluded = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
         let contact_excluded = group_nodes(mesh, &c.exclude, &what, "exclude")?;
         let opts = point_segment::Options {
@@ -651,11 +661,11 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             node_to_segment,
             penalty: c.penalty,
             contact_excluded,
-            rho: c.rho,
+            rho: c.rho.unwrap_or(1e-3 * e_min / h_min),
             initial,
             initial_gap: c.initial_gap,
             friction: (c.friction > 0.0).then_some(c.friction),
-            rho_f: c.rho_f,
+            rho_f: c.rho_f.unwrap_or(60.0 / h_min),
             friction_excluded,
             ..Default::default()
         };

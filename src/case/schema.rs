@@ -322,9 +322,10 @@ pub struct ContactSpec {
     pub integration: String,
     #[serde(default = "three")]
     pub gauss_points: usize,
-    /// Augmentation coefficient (stress / length).
-    #[serde(default = "hundred")]
-    pub rho: f64,
+    /// Augmentation coefficient (stress / length); default from the model: 1e-3 E_min / h
+    /// (h the shortest slave cell), 100 on SSNP154's scale.
+    #[serde(default)]
+    pub rho: Option<f64>,
     /// Initial status: "all" points active, or the "closed" ones (gap <= 0).
     #[serde(default = "default_initial")]
     pub initial: String,
@@ -338,9 +339,9 @@ pub struct ContactSpec {
     /// Coulomb friction coefficient (0: frictionless).
     #[serde(default)]
     pub friction: f64,
-    /// Friction augmentation coefficient (1 / length).
-    #[serde(default = "hundred")]
-    pub rho_f: f64,
+    /// Friction augmentation coefficient (1 / length); default from the model: 60 / h.
+    #[serde(default)]
+    pub rho_f: Option<f64>,
     /// Node groups excluded from friction only (e.g. a node on a symmetry axis).
     #[serde(default)]
     pub friction_exclude: Vec<String>,
@@ -361,9 +362,6 @@ fn default_integration() -> String {
 }
 fn three() -> usize {
     3
-}
-fn hundred() -> f64 {
-    100.0
 }
 fn default_initial() -> String {
     "all".into()

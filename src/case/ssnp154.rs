@@ -208,12 +208,13 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         formulation: formulation.into(),
         integration: "gauss".into(),
         gauss_points: 3,
-        rho: 100.0,
+        // the reference's augmentation (mortar has none)
+        rho: (formulation != "mortar").then_some(100.0),
         initial: "closed".into(),
         initial_gap: Some(0.1),
         adjust: None,
         friction: 0.0,
-        rho_f: 100.0,
+        rho_f: None,
         friction_exclude: vec![],
         penalty: None,
         exclude: if tied { vec!["C".into()] } else { vec![] },
@@ -226,6 +227,7 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         k.friction = 0.1;
         if k.formulation != "mortar" {
             k.integration = "nodal".into();
+            k.rho_f = Some(100.0);
         }
         k.friction_exclude = vec!["C".into()];
     }
