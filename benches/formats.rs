@@ -71,6 +71,9 @@ fn time_formats() {
         .unwrap();
     let mut spec = ssnp154::builtin_mesh(true, 1.5);
     spec.generator = None;
+    // a mesh file takes no generator keys
+    spec.size = None;
+    spec.quadratic = false;
     spec.file = Some(quad.display().to_string());
     let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
     let c = ssnp154::contact_case("B", spec, None);

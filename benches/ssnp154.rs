@@ -29,6 +29,9 @@ fn time_every_row() {
         if shared.exists() {
             let mut spec = ssnp154::builtin_mesh(quadratic, 1.5);
             spec.generator = None;
+            // a mesh file takes no generator keys
+            spec.size = None;
+            spec.quadratic = false;
             let file = if quadratic {
                 "ssnp154b.msh"
             } else {

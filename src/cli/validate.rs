@@ -75,6 +75,9 @@ pub fn validate(
                 let file = reference_file(dir, stem, mesh_format)?;
                 let mut spec = ssnp154::builtin_mesh(quadratic, 1.5);
                 spec.generator = None;
+                // a mesh file takes no generator keys
+                spec.size = None;
+                spec.quadratic = false;
                 spec.file = Some(dir.join(&file).display().to_string());
                 (spec, file)
             }
