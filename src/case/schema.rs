@@ -3,7 +3,33 @@
 
 use crate::fem::material::Modelisation;
 use crate::fem::solid::Kinematics;
-use serde::{Deserialize, Serialize};
+use serde::{Deserialize, Deserializer, Serialize};
+
+/// A point or a table row: exactly two numbers (serde would drop a third silently).
+fn two<E: serde::de::Error>(v: Vec<f64>) -> Result<[f64; 2], E> {
+    match v[..] {
+        [a, b] => Ok([a, b]),
+        _ => Err(E::custom(format!(
+            "expected exactly 2 numbers [x, y], got {}",
+            v.len()
+        ))),
+    }
+}
+
+fn pair<'de, D: Deserializer<'de>>(d: D) -> Result<[f64; 2], D::Error> {
+    two(Vec::<f64>::deserialize(d)?)
+}
+
+fn opt_pair<'de, D: Deserializer<'de>>(d: D) -> Result<Option<[f64; 2]>, D::Error> {
+    Option::<Vec<f64>>::deserialize(d)?.map(two).transpose()
+}
+
+fn pairs<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<[f64; 2]>, D::Error> {
+    Vec::<Vec<f64>>::deserialize(d)?
+        .into_iter()
+        .map(two)
+        .collect()
+}
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
@@ -59,6 +85,7 @@ pub struct MeshSpec {
     pub radius: Option<f64>,
     /// rectangle / ring: cell kind ("Quad4", "Quad8", "Tri3", "Tri6").
     pub cell: Option<String>,
+    #[serde(default, deserialize_with = "opt_pair")]
     pub origin: Option<[f64; 2]>,
     pub width: Option<f64>,
     pub height: Option<f64>,
@@ -120,6 +147,7 @@ pub struct MaterialSpec {
 #[serde(deny_unknown_fields)]
 pub struct FunctionSpec {
     pub name: String,
+    #[serde(deserialize_with = "pairs")]
     pub table: Vec<[f64; 2]>,
 }
 
@@ -139,6 +167,7 @@ pub struct DisplacementSpec {
 #[serde(deny_unknown_fields)]
 pub struct RotationSpec {
     pub group: String,
+    #[serde(deserialize_with = "pair")]
     pub center: [f64; 2],
     /// Degrees, counter-clockwise, at f = 1.
     pub angle: f64,
@@ -300,6 +329,7 @@ pub struct ProbeSpec {
     pub group: Option<String>,
     /// A point (x, y): the probe is the value at the nearest node of a 2D cell (of
     /// `stress_group` when given).
+    #[serde(default, deserialize_with = "opt_pair")]
     pub at: Option<[f64; 2]>,
     /// dx, dy, sixx, siyy, sizz, sixy, vmis
     pub field: String,
