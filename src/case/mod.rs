@@ -598,23 +598,10 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         match c.formulation.as_str() {
             "point-to-segment" | "node-to-segment" => {}
             "mortar" => {
-                // complementarity parameter: stiffest-scale E over the shortest slave cell
-                let e_min = case
-                    .material
-                    .iter()
-                    .map(|m| m.young)
-                    .fold(f64::INFINITY, f64::min);
                 same_body()?;
                 let (slave, master, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
-                let h_min = slave
-                    .cells
-                    .iter()
-                    .map(|&e| {
-                        let n = mesh.cell_nodes(e);
-                        let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
-                        (a[0] - b[0]).hypot(a[1] - b[1])
-                    })
-                    .fold(f64::INFINITY, f64::min);
+                // complementarity parameter: the softest E over the shortest slave cell
+                let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
                 let mut mortar = Mortar::new(
                     mesh,
                     slave,
