@@ -311,3 +311,44 @@ fn unequal_cylinders_match_hertz_whichever_side_is_the_slave() {
     }
     assert!((peaks[0] / peaks[1] - 1.0).abs() < 0.01, "{peaks:?}");
 }
+
+/// Newton converges quadratically on frictionless mortar contact with large kinematics
+/// once the active set has settled: the tangent (dual numbers through the whole mortar
+/// kernel) is the exact derivative of the residual. (Full Newton: no chord steps, no
+/// frozen bodies' tangent.)
+#[test]
+fn mortar_newton_converges_quadratically_with_large_kinematics() {
+    use tribo::solver::linear::Method;
+    use tribo::solver::newton::{solve, NewtonSettings, Nonlinear};
+    for (axisymmetric, quadratic, size) in [(false, true, 0.5), (true, false, 0.25)] {
+        let text = case_text(axisymmetric, quadratic, size, true, 1.15)
+            .replace("kinematics = \"small\"", "kinematics = \"large\"");
+        let c: CaseFile = toml::from_str(&text).unwrap();
+        let mesh = case::build_mesh(&c.mesh, Path::new("")).unwrap();
+        let solid = case::build_problem(&c, &mesh).unwrap();
+        let pairs = case::build_pairs(&c, &mesh).unwrap();
+        let mut p = tribo::contact::problem::ContactProblem::new(solid, pairs);
+        let settings = NewtonSettings {
+            tolerance: 1e-12,
+            max_iterations: 40,
+            chord_steps: false,
+            frozen_bodies: false,
+            reuse_factor: false,
+            ..Default::default()
+        };
+        let report = solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
+        assert!(p.num_unknowns() > 0);
+        let it = &report.steps.last().unwrap().iterations;
+        let r: Vec<f64> = it.iter().map(|i| i.relative_residual).collect();
+        println!("axisymmetric {axisymmetric}, quadratic {quadratic}: residuals {r:?}");
+        // the last correction at settled statuses from a small residual to one above
+        // round-off (1e-14): log r_{k+1} / log r_k ≥ 1.8 (2 is quadratic)
+        let pair = (0..r.len() - 1)
+            .rev()
+            .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-14 && it[k].status_changes == 0)
+            .expect("an iteration pair in the asymptotic range");
+        let order = r[pair + 1].ln() / r[pair].ln();
+        println!("pair {} -> {}: order {order:.2}", r[pair], r[pair + 1]);
+        assert!(order >= 1.8, "order {order}: {r:?}");
+    }
+}

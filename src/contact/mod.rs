@@ -4,7 +4,8 @@
 //! |---|---|
 //! | `axis.rs` | the pressure at slave nodes of zero weight (on the axis) from their neighbours |
 //! | `surface.rs` | contact surfaces from edge groups: connected chains with outward sides |
-//! | `projection.rs` | closest-point projection on Seg2/Seg3 segments |
+//! | `projection.rs` | closest-point projection on Seg2/Seg3 segments; their points and tangents |
+//! | `real.rs` | the number type of exactly differentiated code (f64 or dual) |
 //! | `friction.rs` | Coulomb's law as a pure return map (semi-multiplier form) |
 //! | `pair.rs` | the `ContactPair` interface of the formulations |
 //! | `mortar/` | dual mortar, nodal weighted gaps and active set |
@@ -18,4 +19,5 @@ pub mod pair;
 pub mod point_segment;
 pub mod problem;
 pub mod projection;
+pub mod real;
 pub mod surface;

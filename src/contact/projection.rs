@@ -1,7 +1,8 @@
 //! Closest-point projection of a point on a Seg2/Seg3 segment (current coordinates):
-//! Newton on ξ for (x − x̄(ξ))·x̄'(ξ) = 0.
+//! Newton on ξ for (x − x̄(ξ))·x̄'(ξ) = 0; the segment's shape functions, points and
+//! tangents, generic over the number type (values or dual numbers).
 
-use crate::fem::element::{shape, shape_grad};
+use super::real::{constant, Real};
 use crate::mesh::CellKind;
 
 #[derive(Clone, Copy, Debug)]
@@ -12,18 +13,36 @@ pub struct Projection {
     pub converged: bool,
 }
 
+/// Shape functions of a Seg2/Seg3 and their ξ-derivatives at ξ (any real or dual ξ:
+/// the mortar terms are differentiated through the parametric coordinates).
+pub fn seg_shape<T: Real>(kind: CellKind, xi: T) -> ([T; 3], [T; 3]) {
+    let (half, one): (T, T) = (constant(0.5), constant(1.0));
+    match kind {
+        CellKind::Seg2 => (
+            [half * (one - xi), half * (one + xi), constant(0.0)],
+            [constant(-0.5), half, constant(0.0)],
+        ),
+        _ => (
+            [
+                half * xi * (xi - 1.0),
+                half * xi * (xi + 1.0),
+                one - xi * xi,
+            ],
+            [xi - 0.5, xi + 0.5, xi * -2.0],
+        ),
+    }
+}
+
 /// Position and tangent dx/dξ of the segment at ξ.
-pub fn point_and_tangent(kind: CellKind, x: &[[f64; 2]], xi: f64) -> ([f64; 2], [f64; 2]) {
-    let mut n = [0.0; 8];
-    let mut dn = [[0.0; 2]; 8];
-    shape(kind, [xi, 0.0], &mut n);
-    shape_grad(kind, [xi, 0.0], &mut dn);
-    let mut p = [0.0; 2];
-    let mut t = [0.0; 2];
+pub fn point_and_tangent<T: Real>(kind: CellKind, x: &[[T; 2]], xi: T) -> ([T; 2], [T; 2]) {
+    let (n, dn) = seg_shape(kind, xi);
+    let zero: T = constant(0.0);
+    let mut p = [zero; 2];
+    let mut t = [zero; 2];
     for a in 0..kind.num_nodes() {
         for k in 0..2 {
             p[k] += n[a] * x[a][k];
-            t[k] += dn[a][0] * x[a][k];
+            t[k] += dn[a] * x[a][k];
         }
     }
     (p, t)

@@ -1,15 +1,35 @@
 //! Where the mortar terms are evaluated: positions, the slave and master normal fields
 //! (nodal normals averaged over the adjacent cells), the measure of the surface element.
+//! The normals and the measure are generic over the number type, so that the tangent
+//! differentiates them exactly.
 
 use super::super::projection::point_and_tangent;
+use super::super::real::{constant, Real};
 use super::super::surface::Surface;
 use super::Mortar;
 use crate::fem::element::{shape, MAX_NODES};
-use crate::mesh::Mesh;
+use crate::mesh::{CellKind, Mesh};
 use std::collections::HashMap;
 
-pub(super) fn cross(a: [f64; 2], b: [f64; 2]) -> f64 {
+pub(super) fn cross<T: Real>(a: [T; 2], b: [T; 2]) -> T {
     a[0] * b[1] - a[1] * b[0]
+}
+
+/// Euclidean length of a 2-vector.
+pub(super) fn norm<T: Real>(a: [T; 2]) -> T {
+    (a[0] * a[0] + a[1] * a[1]).sqrt()
+}
+
+/// Outward unit normal at ξ of a segment with node positions x (`ccw`: the body lies to
+/// the left of the segment's direction).
+pub(super) fn unit_normal<T: Real>(kind: CellKind, x: &[[T; 2]], ccw: bool, xi: T) -> [T; 2] {
+    let (_, t) = point_and_tangent(kind, x, xi);
+    let l = norm(t);
+    if ccw {
+        [t[1] / l, -t[0] / l]
+    } else {
+        [-t[1] / l, t[0] / l]
+    }
 }
 
 impl Mortar {
@@ -51,13 +71,7 @@ impl Mortar {
             .iter()
             .map(|&n| self.geo(mesh, u, n))
             .collect();
-        let (_, t) = point_and_tangent(mesh.kind(c), &x, xi);
-        let l = t[0].hypot(t[1]);
-        if surf.ccw[ic] {
-            [t[1] / l, -t[0] / l]
-        } else {
-            [-t[1] / l, t[0] / l]
-        }
+        unit_normal(mesh.kind(c), &x, surf.ccw[ic], xi)
     }
 
     /// Averaged outward unit normal at a slave corner node.
@@ -74,18 +88,8 @@ impl Mortar {
         cells_of_node: &HashMap<usize, Vec<usize>>,
         n: usize,
     ) -> [f64; 2] {
-        let mut acc = [0.0; 2];
-        for &ic in &cells_of_node[&n] {
-            let nodes = mesh.cell_nodes(surf.cells[ic]);
-            let xi = if nodes[0] == n { -1.0 } else { 1.0 };
-            let v = self.edge_normal(mesh, u, surf, ic, xi);
-            acc[0] += v[0];
-            acc[1] += v[1];
-        }
-        let l = acc[0].hypot(acc[1]);
-        [acc[0] / l, acc[1] / l]
+        averaged_normal_at(mesh, surf, &cells_of_node[&n], n, &|m| self.geo(mesh, u, m))
     }
-
     /// The master's normal field on master cell im at ξ: its averaged nodal normals
     /// interpolated (the cell's own normal at a mid-side node), normalised.
     pub(super) fn master_normal(&self, mesh: &Mesh, u: &[f64], im: usize, xi: f64) -> [f64; 2] {
@@ -108,11 +112,36 @@ impl Mortar {
         [acc[0] / l, acc[1] / l]
     }
 
-    pub(super) fn measure(&self, p: [f64; 2]) -> f64 {
+    /// The measure of the surface element per unit length at p: 2πr in axisymmetry, the
+    /// thickness otherwise.
+    pub(super) fn measure<T: Real>(&self, p: [T; 2]) -> T {
         if self.axisymmetric {
-            2.0 * std::f64::consts::PI * p[0]
+            p[0] * (2.0 * std::f64::consts::PI)
         } else {
-            self.thickness
+            constant(self.thickness)
         }
     }
+}
+
+/// The unit normal at corner node n of `surf` averaged over its cells `cells` (indices in
+/// the surface), with the node positions given by `pos`.
+pub(super) fn averaged_normal_at<T: Real>(
+    mesh: &Mesh,
+    surf: &Surface,
+    cells: &[usize],
+    n: usize,
+    pos: &impl Fn(usize) -> [T; 2],
+) -> [T; 2] {
+    let mut acc = [constant::<T>(0.0); 2];
+    for &ic in cells {
+        let c = surf.cells[ic];
+        let nodes = mesh.cell_nodes(c);
+        let x: Vec<[T; 2]> = nodes.iter().map(|&m| pos(m)).collect();
+        let xi = if nodes[0] == n { -1.0 } else { 1.0 };
+        let v = unit_normal(mesh.kind(c), &x, surf.ccw[ic], constant(xi));
+        acc[0] += v[0];
+        acc[1] += v[1];
+    }
+    let l = norm(acc);
+    [acc[0] / l, acc[1] / l]
 }

@@ -1,25 +1,63 @@
-//! The tangent of the mortar terms. Small kinematics: exact (the terms are linear in u on
-//! the reference geometry). Large kinematics: the derivatives of the weighted gaps, D_j and
-//! the force coefficients by central differences, cell by cell (each perturbed dof only
-//! re-evaluates the slave cells that read it); they contain every geometric variation
-//! (normals, segment ends, projections, Jacobians) to ~1e-8.
+//! The tangent of the mortar terms, exact. Small kinematics: the terms are linear in u on
+//! the reference geometry. Large kinematics: forward-mode automatic differentiation of the
+//! cell kernel (`segments.rs`) with dual numbers, per slave cell and master cell: the
+//! derivatives with respect to the slave cell's nodes, its two corner normals and the
+//! master cell's nodes (16 slots), the corner normals then chained to the nodes of the
+//! cells that share the corner. They contain every geometric variation (normals, segment
+//! ends, projections, Jacobians, the dual basis).
 
 use super::friction::Branch;
-use super::segments::CellTerms;
+use super::geometry::averaged_normal_at;
+use super::segments::{CellTerms, Overlap, SlaveCell};
 use super::Mortar;
 use crate::assembly::coupled::Triplets;
 use crate::mesh::Mesh;
+use num_dual::DualSVec64;
 use rayon::prelude::*;
 
-/// Central-difference derivatives of one cell group's terms with respect to one dof:
-/// weighted gaps, weights, forces (ordered: the triplets and the sums of duplicates come out
-/// the same every time), slips and tangential forces.
-struct DofDerivatives {
-    dg: Vec<f64>,
-    dd: Vec<f64>,
-    df: std::collections::BTreeMap<(usize, usize), f64>,
-    ds: Vec<f64>,
-    dtf: std::collections::BTreeMap<(usize, usize), f64>,
+/// Derivative slots: slave cell nodes 0..6, its corner normals 6..10, master cell nodes
+/// 10..16 (two per node, x then y).
+type Dual = DualSVec64<16>;
+
+fn seed(v: f64, slot: usize) -> Dual {
+    Dual::from_re(v).derivative(slot)
+}
+
+/// One slave cell's derivatives: of the contracted force rows (row, column, value), and
+/// per multiplier index of the weighted gaps, D_j and the weighted slips (j, column, value).
+#[derive(Default)]
+struct CellDerivatives {
+    rows: Vec<(usize, usize, f64)>,
+    dg: Vec<(usize, usize, f64)>,
+    dd: Vec<(usize, usize, f64)>,
+    ds: Vec<(usize, usize, f64)>,
+}
+
+/// Sums the entries of each multiplier's derivative per column (sorted by column).
+fn by_multiplier(entries: Vec<(usize, usize, f64)>, nm: usize) -> Vec<Vec<(usize, f64)>> {
+    let mut out: Vec<Vec<(usize, f64)>> = vec![vec![]; nm];
+    for (j, col, v) in entries {
+        out[j].push((col, v));
+    }
+    for e in out.iter_mut() {
+        merge(e);
+    }
+    out
+}
+
+/// Sorts (index, value) pairs by index and sums duplicates.
+fn merge(e: &mut Vec<(usize, f64)>) {
+    e.sort_by_key(|p| p.0);
+    let mut w = 0;
+    for r in 0..e.len() {
+        if w > 0 && e[w - 1].0 == e[r].0 {
+            e[w - 1].1 += e[r].1;
+        } else {
+            e[w] = e[r];
+            w += 1;
+        }
+    }
+    e.truncate(w);
 }
 
 /// The exact tangent of the contact terms with small kinematics: on the fixed reference
@@ -72,10 +110,155 @@ pub(super) fn linear_tangent(
 }
 
 impl Mortar {
-    /// The u-columns of the tangent by central differences; `gd` the weighted gaps and D_j,
+    /// The derivatives of a slave corner's averaged normal with respect to the nodes of
+    /// the cells sharing it: its value and (dof, ∂n/∂dof) per dof.
+    fn normal_jacobian(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        n: usize,
+    ) -> ([f64; 2], Vec<(usize, [f64; 2])>) {
+        let cells = &self.cells_of_node[&n];
+        let mut nodes: Vec<usize> = cells
+            .iter()
+            .flat_map(|&ic| mesh.cell_nodes(self.slave.cells[ic]).iter().copied())
+            .collect();
+        nodes.sort_unstable();
+        nodes.dedup();
+        let pos = |m: usize| {
+            let k = nodes.iter().position(|&x| x == m).unwrap();
+            let p = Self::pos(mesh, u, m);
+            [seed(p[0], 2 * k), seed(p[1], 2 * k + 1)]
+        };
+        let v = averaged_normal_at(mesh, &self.slave, cells, n, &pos);
+        let e = [
+            v[0].eps.0.unwrap_or_default(),
+            v[1].eps.0.unwrap_or_default(),
+        ];
+        let jac = nodes
+            .iter()
+            .enumerate()
+            .flat_map(|(k, &m)| (0..2).map(move |c| (k, m, c)))
+            .map(|(k, m, c)| (2 * m + c, [e[0][2 * k + c], e[1][2 * k + c]]))
+            .collect();
+        ([v[0].re, v[1].re], jac)
+    }
+
+    /// One slave cell's derivatives with large kinematics; `weight` the factor of each
+    /// normal force coefficient in the residual (λ_j, plus the augmentation on active
+    /// nodes), `traction` the tangential multipliers (with friction).
+    fn cell_derivatives(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        ic: usize,
+        weight: &[f64],
+        traction: Option<&[f64]>,
+    ) -> CellDerivatives {
+        let snodes = mesh.cell_nodes(self.slave.cells[ic]);
+        let nn = snodes.len();
+        let displacement =
+            |x: [Dual; 2], n: usize| [x[0] - mesh.coords[n][0], x[1] - mesh.coords[n][1]];
+        let x: Vec<[Dual; 2]> = snodes
+            .iter()
+            .enumerate()
+            .map(|(a, &n)| {
+                let p = Self::pos(mesh, u, n);
+                [seed(p[0], 2 * a), seed(p[1], 2 * a + 1)]
+            })
+            .collect();
+        let (n0, j0) = self.normal_jacobian(mesh, u, snodes[0]);
+        let (n1, j1) = self.normal_jacobian(mesh, u, snodes[1]);
+        let cell = SlaveCell {
+            u: x.iter()
+                .zip(snodes)
+                .map(|(&p, &n)| displacement(p, n))
+                .collect(),
+            x,
+            corner_normals: [
+                [seed(n0[0], 6), seed(n0[1], 7)],
+                [seed(n1[0], 8), seed(n1[1], 9)],
+            ],
+        };
+        let jacs = [j0, j1];
+        let master = |im: usize| {
+            let nodes = mesh.cell_nodes(self.master.cells[im]);
+            let x: Vec<[Dual; 2]> = nodes
+                .iter()
+                .enumerate()
+                .map(|(b, &n)| {
+                    let p = Self::pos(mesh, u, n);
+                    [seed(p[0], 10 + 2 * b), seed(p[1], 11 + 2 * b)]
+                })
+                .collect();
+            let d = x
+                .iter()
+                .zip(nodes)
+                .map(|(&p, &n)| displacement(p, n))
+                .collect();
+            (x, d)
+        };
+        // the derivative of q with respect to the dofs, given the master cell's nodes
+        let scatter = |q: &Dual, mnodes: &[usize], out: &mut dyn FnMut(usize, f64)| {
+            let Some(e) = &q.eps.0 else { return };
+            for (s, &v) in e.iter().enumerate() {
+                if v == 0.0 {
+                    continue;
+                }
+                match s {
+                    0..6 if s / 2 < nn => out(2 * snodes[s / 2] + s % 2, v),
+                    6..10 => {
+                        for &(dof, dn) in &jacs[(s - 6) / 2] {
+                            out(dof, v * dn[s % 2]);
+                        }
+                    }
+                    10.. if (s - 10) / 2 < mnodes.len() => out(2 * mnodes[(s - 10) / 2] + s % 2, v),
+                    _ => {}
+                }
+            }
+        };
+        let mult: Vec<usize> = snodes.iter().map(|n| self.mult_of[n]).collect();
+        let mut out = CellDerivatives::default();
+        let d = self.cell_kernel(mesh, u, ic, &cell, master, |o: Overlap<Dual>| {
+            let mnodes = mesh.cell_nodes(self.master.cells[o.im]);
+            for l in (0..nn).chain(3..3 + mnodes.len()) {
+                for c in 0..2 {
+                    let row = if l < 3 {
+                        2 * snodes[l] + c
+                    } else {
+                        2 * mnodes[l - 3] + c
+                    };
+                    let mut q = Dual::from_re(0.0);
+                    for j in 0..nn {
+                        q += o.force[j][l][c] * weight[mult[j]];
+                        if let Some(t) = traction {
+                            q += o.tforce[j][l][c] * t[mult[j]];
+                        }
+                    }
+                    scatter(&q, mnodes, &mut |col, v| out.rows.push((row, col, v)));
+                }
+            }
+            for j in 0..nn {
+                scatter(&o.gap[j], mnodes, &mut |col, v| {
+                    out.dg.push((mult[j], col, v))
+                });
+                if traction.is_some() {
+                    scatter(&o.slip[j], mnodes, &mut |col, v| {
+                        out.ds.push((mult[j], col, v))
+                    });
+                }
+            }
+        });
+        for j in 0..nn {
+            scatter(&d[j], &[], &mut |col, v| out.dd.push((mult[j], col, v)));
+        }
+        out
+    }
+
+    /// The u-columns of the tangent with large kinematics; `gd` the weighted gaps and D_j,
     /// `fj` the force coefficients of the active nodes, `rows` the first multiplier row.
     #[allow(clippy::too_many_arguments)]
-    pub(super) fn difference_tangent(
+    pub(super) fn exact_tangent(
         &self,
         mesh: &Mesh,
         u: &[f64],
@@ -89,102 +272,72 @@ impl Mortar {
     ) {
         let (g, d) = gd;
         let nm = self.mult_nodes.len();
-        // u-derivatives by central differences, cell by cell: each dof's in parallel (on
-        // a copy of u per thread), their triplets then emitted in dof order, so the
-        // matrix is the same whatever the threads.
-        let mut dofs: Vec<usize> = self.readers.keys().copied().collect();
-        dofs.sort_unstable();
-        let derivatives: Vec<DofDerivatives> = dofs
-            .par_iter()
-            .map_init(
-                || u.to_vec(),
-                |up, &dof| {
-                    let h = 1e-7 * (1.0 + mesh.coords[dof / 2][dof % 2].abs().max(1.0));
-                    let mut dv = DofDerivatives {
-                        dg: vec![0.0; nm],
-                        dd: vec![0.0; nm],
-                        df: Default::default(),
-                        ds: vec![0.0; nm],
-                        dtf: Default::default(),
-                    };
-                    for (sign, s) in [(1.0, h), (-1.0, -h)] {
-                        up[dof] = u[dof] + s;
-                        for &ic in &self.readers[&dof] {
-                            let t = self.cell_terms(mesh, up, ic);
-                            for (j, v) in t.gap {
-                                dv.dg[j] += sign * v / (2.0 * h);
-                            }
-                            for (j, v) in t.dj {
-                                dv.dd[j] += sign * v / (2.0 * h);
-                            }
-                            for (j, row, v) in t.force {
-                                *dv.df.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
-                            }
-                            for (j, v) in t.slip {
-                                dv.ds[j] += sign * v / (2.0 * h);
-                            }
-                            for (j, row, v) in t.tforce {
-                                *dv.dtf.entry((j, row)).or_insert(0.0) += sign * v / (2.0 * h);
-                            }
+        let c = self.c;
+        let weight: Vec<f64> = (0..nm)
+            .map(|j| lam[j] - if active[j] { c * g[j] / d[j] } else { 0.0 })
+            .collect();
+        let traction = self.friction.map(|_| &lam[nm..2 * nm]);
+        // cells in parallel, their entries then emitted in cell order: the matrix is the
+        // same whatever the threads
+        let cells: Vec<CellDerivatives> = (0..self.slave.cells.len())
+            .into_par_iter()
+            .map(|ic| self.cell_derivatives(mesh, u, ic, &weight, traction))
+            .collect();
+        let (mut dg, mut dd, mut ds) = (vec![], vec![], vec![]);
+        for cd in cells {
+            for (r, col, v) in cd.rows {
+                k.add(r, col, v);
+            }
+            dg.extend(cd.dg);
+            dd.extend(cd.dd);
+            ds.extend(cd.ds);
+        }
+        let (dg, dd, ds) = (
+            by_multiplier(dg, nm),
+            by_multiplier(dd, nm),
+            by_multiplier(ds, nm),
+        );
+        for j in 0..nm {
+            // the augmentation's factor −c g̃_j/D_j on F_j varies with g̃_j and D_j
+            if active[j] {
+                let mut f = fj[j].clone();
+                merge(&mut f);
+                let (gj, dj) = (g[j], d[j]);
+                for &(row, v) in &f {
+                    for &(col, w) in &dg[j] {
+                        k.add(row, col, -c * v / dj * w);
+                    }
+                    for &(col, w) in &dd[j] {
+                        k.add(row, col, c * gj * v / (dj * dj) * w);
+                    }
+                }
+                for &(col, w) in &dg[j] {
+                    k.add(rows + j, col, -w);
+                }
+            } else {
+                for &(col, w) in &dd[j] {
+                    k.add(rows + j, col, -lam[j] / c * w);
+                }
+            }
+            if let Some(mu) = self.friction {
+                let row = rows + nm + j;
+                let tj = lam[nm + j];
+                match law[j] {
+                    Branch::Stick => {
+                        for &(col, w) in &ds[j] {
+                            k.add(row, col, -w);
                         }
                     }
-                    up[dof] = u[dof];
-                    dv
-                },
-            )
-            .collect();
-        for (&dof, dv) in dofs.iter().zip(derivatives) {
-            let DofDerivatives {
-                dg,
-                dd,
-                df,
-                ds,
-                dtf,
-            } = dv;
-            if let Some(mu) = self.friction {
-                for ((j, row), v) in dtf {
-                    k.add(row, dof, lam[nm + j] * v);
-                }
-                for j in 0..nm {
-                    let row = rows + nm + j;
-                    let v = match law[j] {
-                        Branch::Stick => -ds[j],
-                        Branch::Slip(sg) => -(lam[nm + j] - mu * lam[j] * sg) / self.c * dd[j],
-                        Branch::Free => -lam[nm + j] / self.c * dd[j],
-                    };
-                    if v != 0.0 {
-                        k.add(row, dof, v);
+                    Branch::Slip(sg) => {
+                        for &(col, w) in &dd[j] {
+                            k.add(row, col, -(tj - mu * lam[j] * sg) / c * w);
+                        }
                     }
-                }
-            }
-            for ((j, row), v) in df {
-                let aug = if active[j] {
-                    -self.c * g[j] / d[j]
-                } else {
-                    0.0
-                };
-                k.add(row, dof, (lam[j] + aug) * v);
-            }
-            for j in 0..nm {
-                if active[j] && (dg[j] != 0.0 || dd[j] != 0.0) {
-                    let (gj, dj) = (g[j], d[j]);
-                    for &(row, v) in &fj[j] {
-                        k.add(
-                            row,
-                            dof,
-                            -self.c * (v / dj * dg[j] - gj * v / (dj * dj) * dd[j]),
-                        );
+                    Branch::Free => {
+                        for &(col, w) in &dd[j] {
+                            k.add(row, col, -tj / c * w);
+                        }
                     }
-                }
-            }
-            for j in 0..nm {
-                let v = if active[j] {
-                    -dg[j]
-                } else {
-                    -lam[j] * dd[j] / self.c
-                };
-                if v != 0.0 {
-                    k.add(rows + j, dof, v);
                 }
             }
         }

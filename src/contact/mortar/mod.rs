@@ -27,7 +27,7 @@
 //! | `segments.rs` | one slave cell's terms: dual basis, overlap segments, weighted gaps, forces, slips |
 //! | `active_set.rs` | initial contact, nodal weighted gaps and D_j, row weights |
 //! | `friction.rs` | the Coulomb branch of a slave node |
-//! | `linearisation.rs` | the tangent: exact (small kinematics) or by central differences |
+//! | `linearisation.rs` | the exact tangent: linear terms (small kinematics) or dual numbers |
 //! | `sides.rs` | which surface carries the multipliers: the coarser where they face |
 
 mod active_set;
@@ -76,9 +76,6 @@ pub struct Mortar {
     pattern_candidates: Vec<Vec<usize>>,
     /// The candidates at the start of the load step (restored when it is cut).
     saved_candidates: Vec<Vec<usize>>,
-    /// for each full dof read by some slave cell's evaluation, those cells
-    readers: HashMap<usize, Vec<usize>>,
-    saved_readers: HashMap<usize, Vec<usize>>,
     active: Vec<bool>,
     saved: Vec<bool>,
     axisymmetric: bool,
@@ -182,8 +179,6 @@ impl Mortar {
             saved_candidates: candidates.clone(),
             pattern_candidates,
             candidates,
-            readers: HashMap::new(),
-            saved_readers: HashMap::new(),
             active: vec![],
             saved: vec![],
             axisymmetric: model == Modelisation::Axisymmetric,
@@ -212,28 +207,11 @@ impl Mortar {
         m.mult_coords = m.mult_nodes.iter().map(|&n| mesh.coords[n]).collect();
         m.active = vec![false; m.mult_nodes.len()];
         m.saved = m.active.clone();
-        m.build_readers(mesh);
-        m.saved_readers = m.readers.clone();
         m
     }
 
-    fn build_readers(&mut self, mesh: &Mesh) {
-        self.readers.clear();
-        for ic in 0..self.slave.cells.len() {
-            for n in self.nodes_read(mesh, ic) {
-                for d in [2 * n, 2 * n + 1] {
-                    self.readers.entry(d).or_default().push(ic);
-                }
-            }
-        }
-    }
-
-    /// Nodes whose positions the evaluation of slave cell ic depends on.
-    fn nodes_read(&self, mesh: &Mesh, ic: usize) -> Vec<usize> {
-        self.nodes_with(mesh, ic, &self.candidates[ic])
-    }
-
-    /// The same with the pattern's candidates (a superset).
+    /// Nodes whose positions the evaluation of slave cell ic may depend on over the
+    /// solve (with the pattern's candidates).
     fn nodes_in_pattern(&self, mesh: &Mesh, ic: usize) -> Vec<usize> {
         self.nodes_with(mesh, ic, &self.pattern_candidates[ic])
     }
@@ -406,7 +384,7 @@ impl ContactPair for Mortar {
             linear_tangent(&terms, self.c, &active, &d, &law, ndof + mult_base, nm, k);
         } else {
             let rows = ndof + mult_base;
-            self.difference_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
+            self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
         }
         // pattern: every dof a cell may read couples with every dof and multiplier of its
         // cells
@@ -455,7 +433,6 @@ impl ContactPair for Mortar {
             changes += 1;
             add_to_pattern(&mut self.pattern_candidates, &near);
             self.candidates = near;
-            self.build_readers(mesh);
         }
         let (g, d, facing, sl) = self.gaps(mesh, u);
         for j in 0..self.active.len() {
@@ -492,7 +469,6 @@ impl ContactPair for Mortar {
         self.switches.fill(0);
         if self.saved_candidates != self.candidates {
             self.saved_candidates = self.candidates.clone();
-            self.saved_readers = self.readers.clone();
         }
         self.saved = self.active.clone();
         self.saved_law = self.law.clone();
@@ -502,7 +478,6 @@ impl ContactPair for Mortar {
     fn restore(&mut self) {
         if self.candidates != self.saved_candidates {
             self.candidates = self.saved_candidates.clone();
-            self.readers = self.saved_readers.clone();
         }
         self.active = self.saved.clone();
         self.law = self.saved_law.clone();
@@ -561,8 +536,8 @@ impl ContactPair for Mortar {
         }
     }
 
-    /// No: a mortar re-solve redoes the contact terms and their finite-difference tangent,
-    /// nearly a whole iteration, and on fine meshes the nodal active set cycles at a fixed
+    /// No: a mortar re-solve redoes the contact terms and their tangent, a large part of an
+    /// iteration, and on fine meshes the nodal active set cycles at a fixed
     /// linearisation (SSNP154 quadratic, 0.375 mm: 41 Newton iterations with re-solves,
     /// 10 without; reference meshes A–D: 10/12/13/14 → 7/8/9/9).
     fn active_set_resolves(&self) -> bool {

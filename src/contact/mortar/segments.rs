@@ -2,13 +2,18 @@
 //! the master cells it faces (master ends projected along the slave normal field), and on
 //! them by Gauss quadrature the weighted gaps, D_j, the normal and tangential force
 //! coefficients and the weighted slips.
+//!
+//! The kernel is generic over the number type: with f64 it gives the residual's terms,
+//! with dual numbers their exact derivatives (normals, segment ends, projections,
+//! Jacobians and the dual basis included), from the same code.
 
-use super::super::projection::point_and_tangent;
-use super::geometry::cross;
+use super::super::projection::{point_and_tangent, seg_shape};
+use super::super::real::{constant, value, Real};
+use super::geometry::{cross, norm, unit_normal};
 use super::Mortar;
-use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Mesh;
+use std::sync::OnceLock;
 
 /// What one slave cell contributes: per slave node j (multiplier index) its weighted gap,
 /// its D_j = ∫ N_j, and force coefficients (dof, value) per unit λ_j.
@@ -25,34 +30,127 @@ pub(super) struct CellTerms {
     pub tforce: Vec<(usize, usize, f64)>,
 }
 
+/// A slave cell at the evaluation point: where its geometry is evaluated, its
+/// displacements, and the averaged unit normals at its two corners.
+pub(super) struct SlaveCell<T> {
+    pub x: Vec<[T; 2]>,
+    pub u: Vec<[T; 2]>,
+    pub corner_normals: [[T; 2]; 2],
+}
+
+/// What the overlap of a slave cell with master cell `im` contributes, summed over its
+/// Gauss points. Per slave node j of the cell (local index) and local node l (the slave
+/// cell's nodes 0..3, then the master cell's 3..6): force and tangential force
+/// coefficients per unit multiplier, component by component.
+pub(super) struct Overlap<T> {
+    pub im: usize,
+    pub gap: [T; 3],
+    pub slip: [T; 3],
+    pub cover: [f64; 3],
+    pub force: [[[T; 2]; 6]; 3],
+    pub tforce: [[[T; 2]; 6]; 3],
+}
+
+/// N, dN/dξ, point, tangent and normal field of the slave cell at one ξ.
+type FieldAt<T> = ([T; 3], [T; 3], [T; 2], [T; 2], [T; 2]);
+
+/// Gauss–Legendre points of the overlaps and the cells (6: exact for the products of
+/// quadratic shape functions, dual functions and curved Jacobians to ~1e-10).
+fn gauss6() -> &'static (Vec<f64>, Vec<f64>) {
+    static RULE: OnceLock<(Vec<f64>, Vec<f64>)> = OnceLock::new();
+    RULE.get_or_init(|| gauss_legendre(6))
+}
+
 impl Mortar {
     /// The terms of slave cell ic at displacement u.
     pub(super) fn cell_terms(&self, mesh: &Mesh, u: &[f64], ic: usize) -> CellTerms {
+        let snodes = mesh.cell_nodes(self.slave.cells[ic]);
+        let nn = snodes.len();
+        let cell = SlaveCell {
+            x: snodes.iter().map(|&n| self.geo(mesh, u, n)).collect(),
+            u: snodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect(),
+            corner_normals: [
+                self.node_normal(mesh, u, snodes[0]),
+                self.node_normal(mesh, u, snodes[1]),
+            ],
+        };
+        let master = |im: usize| {
+            let nodes = mesh.cell_nodes(self.master.cells[im]);
+            let x = nodes.iter().map(|&n| self.geo(mesh, u, n)).collect();
+            let d = nodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect();
+            (x, d)
+        };
+        let mut out = CellTerms::default();
+        let mult: Vec<usize> = snodes.iter().map(|n| self.mult_of[n]).collect();
+        let d = self.cell_kernel(mesh, u, ic, &cell, master, |o: Overlap<f64>| {
+            let mnodes = mesh.cell_nodes(self.master.cells[o.im]);
+            let dof = |l: usize, c: usize| {
+                if l < 3 {
+                    2 * snodes[l] + c
+                } else {
+                    2 * mnodes[l - 3] + c
+                }
+            };
+            let locals: Vec<usize> = (0..nn).chain(3..3 + mnodes.len()).collect();
+            for j in 0..nn {
+                let k = mult[j];
+                out.gap.push((k, o.gap[j]));
+                out.cover.push((k, o.cover[j]));
+                for &l in &locals {
+                    for c in 0..2 {
+                        out.force.push((k, dof(l, c), o.force[j][l][c]));
+                    }
+                }
+                if self.friction.is_some() {
+                    out.slip.push((k, o.slip[j]));
+                    for &l in &locals {
+                        for c in 0..2 {
+                            out.tforce.push((k, dof(l, c), o.tforce[j][l][c]));
+                        }
+                    }
+                }
+            }
+        });
+        for a in 0..nn {
+            out.dj.push((mult[a], d[a]));
+        }
+        out
+    }
+
+    /// The kernel of slave cell ic: hands each overlap with a candidate master cell to
+    /// `sink` and returns D_j of the cell's nodes. `master(im)` gives master cell im's node
+    /// positions and displacements; `u` is read only for the reference geometry of small
+    /// kinematics' master normals.
+    pub(super) fn cell_kernel<T: Real>(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        ic: usize,
+        cell: &SlaveCell<T>,
+        master: impl Fn(usize) -> (Vec<[T; 2]>, Vec<[T; 2]>),
+        mut sink: impl FnMut(Overlap<T>),
+    ) -> [T; 3] {
+        let zero: T = constant(0.0);
         let c = self.slave.cells[ic];
         let kind = mesh.kind(c);
         let nn = kind.num_nodes();
         let snodes = mesh.cell_nodes(c);
-        let xs: Vec<[f64; 2]> = snodes.iter().map(|&n| self.geo(mesh, u, n)).collect();
-        let us: Vec<[f64; 2]> = snodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect();
+        let (xs, us) = (&cell.x, &cell.u);
         // nodal normals: averaged at corners, the cell's own at a mid-side node
-        let normals: Vec<[f64; 2]> = (0..nn)
-            .map(|a| {
-                if a < 2 {
-                    self.node_normal(mesh, u, snodes[a])
-                } else {
-                    self.cell_normal(mesh, u, ic, 0.0)
-                }
-            })
-            .collect();
-        let (gp, gw) = gauss_legendre(6);
+        let mut normals = [[zero; 2]; 3];
+        normals[..2].copy_from_slice(&cell.corner_normals);
+        if nn == 3 {
+            normals[2] = unit_normal(kind, xs, self.slave.ccw[ic], zero);
+        }
+        let (gp, gw) = gauss6();
         // dual basis: Φ = A N with A = D M⁻¹ on this cell (current geometry)
-        let mut m = [[0.0; 3]; 3];
-        let mut d = [0.0; 3];
+        let mut m = [[zero; 3]; 3];
+        let mut d = [zero; 3];
         for (q, &xi) in gp.iter().enumerate() {
-            let (p, t) = point_and_tangent(kind, &xs, xi);
-            let j = t[0].hypot(t[1]) * gw[q] * self.measure(p);
-            let mut nv = [0.0; MAX_NODES];
-            shape(kind, [xi, 0.0], &mut nv);
+            let xi = constant(xi);
+            let (p, t) = point_and_tangent(kind, xs, xi);
+            let j = norm(t) * self.measure(p) * gw[q];
+            let (nv, _) = seg_shape(kind, xi);
             for a in 0..nn {
                 d[a] += nv[a] * j;
                 for b in 0..nn {
@@ -64,107 +162,117 @@ impl Mortar {
         // one (a sphere's pole) it is ~1e-7 of the cell's weight: a pressure so weakly
         // weighted is undetermined (and slows Newton), so such a node gets the zero weight
         // of the straight case (its force, λ D, is below 1e-6 of the cell's anyway).
-        let dsum: f64 = d.iter().map(|v| v.abs()).sum();
+        let dsum: f64 = d.iter().map(|v| value(*v).abs()).sum();
         for v in d.iter_mut() {
-            if v.abs() <= 1e-6 * dsum {
-                *v = 0.0;
+            if value(*v).abs() <= 1e-6 * dsum {
+                *v = zero;
             }
         }
         let minv = invert(&m, nn);
-        let mut amat = [[0.0; 3]; 3];
+        let mut amat = [[zero; 3]; 3];
         for a in 0..nn {
             for b in 0..nn {
                 amat[a][b] = d[a] * minv[a][b];
             }
         }
-        let field = |xi: f64| -> ([f64; MAX_NODES], [f64; 2], [f64; 2], [f64; 2]) {
-            let mut nv = [0.0; MAX_NODES];
-            shape(kind, [xi, 0.0], &mut nv);
-            let (p, t) = point_and_tangent(kind, &xs, xi);
-            let mut nf = [0.0; 2];
+        // the slave at ξ: shape functions and their derivatives, point, tangent, and the
+        // normal field n(ξ) = Σ N_k n_k
+        let field = |xi: T| -> FieldAt<T> {
+            let (nv, dn) = seg_shape(kind, xi);
+            let (p, t) = point_and_tangent(kind, xs, xi);
+            let mut nf = [zero; 2];
             for a in 0..nn {
                 nf[0] += nv[a] * normals[a][0];
                 nf[1] += nv[a] * normals[a][1];
             }
-            (nv, p, t, nf)
+            (nv, dn, p, t, nf)
         };
-        let mut out = CellTerms::default();
-        for a in 0..nn {
-            out.dj.push((self.mult_of[&snodes[a]], d[a]));
-        }
+        // the point of the slave cell whose normal passes through `target`
+        let proj_slave = |target: [T; 2]| -> Option<T> {
+            let mut xi = zero;
+            for _ in 0..30 {
+                let (_, dn, p, t, nf) = field(xi);
+                let to = [target[0] - p[0], target[1] - p[1]];
+                let r = cross(to, nf);
+                // derivative: −t × n + (target − p) × n'  (n' from the nodal normals)
+                let mut nd = [zero; 2];
+                for a in 0..nn {
+                    nd[0] += dn[a] * normals[a][0];
+                    nd[1] += dn[a] * normals[a][1];
+                }
+                let dr = cross(to, nd) - cross(t, nf);
+                if value(dr).abs() < 1e-300 {
+                    return None;
+                }
+                let step = r / dr;
+                xi -= step;
+                if value(step).abs() < 1e-13 {
+                    return Some(xi);
+                }
+                if value(xi).abs() > 10.0 {
+                    return None;
+                }
+            }
+            None
+        };
+        let by_value = |a: T, b: T| if value(a) <= value(b) { (a, b) } else { (b, a) };
         for &im in &self.candidates[ic] {
             let mc = self.master.cells[im];
             let mkind = mesh.kind(mc);
             let mnodes = mesh.cell_nodes(mc);
-            let xm: Vec<[f64; 2]> = mnodes.iter().map(|&n| self.geo(mesh, u, n)).collect();
-            let um: Vec<[f64; 2]> = mnodes.iter().map(|&n| [u[2 * n], u[2 * n + 1]]).collect();
+            let (xm, um) = master(im);
             // master end nodes projected on the slave cell along the normal field
-            let proj_slave = |target: [f64; 2]| -> Option<f64> {
-                let mut xi = 0.0;
-                for _ in 0..30 {
-                    let (_, p, t, nf) = field(xi);
-                    let r = cross([target[0] - p[0], target[1] - p[1]], nf);
-                    // derivative: −t × n + (target − p) × n'  (n' from the nodal normals)
-                    let mut dn = [[0.0; 2]; MAX_NODES];
-                    shape_grad(kind, [xi, 0.0], &mut dn);
-                    let mut nd = [0.0; 2];
-                    for a in 0..nn {
-                        nd[0] += dn[a][0] * normals[a][0];
-                        nd[1] += dn[a][0] * normals[a][1];
-                    }
-                    let dr = -cross(t, nf) + cross([target[0] - p[0], target[1] - p[1]], nd);
-                    if dr.abs() < 1e-300 {
-                        return None;
-                    }
-                    let step = r / dr;
-                    xi -= step;
-                    if step.abs() < 1e-13 {
-                        return Some(xi);
-                    }
-                    if xi.abs() > 10.0 {
-                        return None;
-                    }
-                }
-                None
-            };
             let (Some(xa), Some(xb)) = (proj_slave(xm[0]), proj_slave(xm[1])) else {
                 continue;
             };
-            let lo = xa.min(xb).max(-1.0);
-            let hi = xa.max(xb).min(1.0);
-            if hi - lo < 1e-12 {
+            let (mut lo, mut hi) = by_value(xa, xb);
+            if value(lo) < -1.0 {
+                lo = constant(-1.0);
+            }
+            if value(hi) > 1.0 {
+                hi = constant(1.0);
+            }
+            if value(hi) - value(lo) < 1e-12 {
                 continue;
             }
+            let mut o = Overlap {
+                im,
+                gap: [zero; 3],
+                slip: [zero; 3],
+                cover: [0.0; 3],
+                force: [[[zero; 2]; 6]; 3],
+                tforce: [[[zero; 2]; 6]; 3],
+            };
+            let mut any = false;
             for (q, &g) in gp.iter().enumerate() {
-                let xi = 0.5 * (lo + hi) + 0.5 * (hi - lo) * g;
-                let (nv, p, t, nf) = field(xi);
+                let xi = (lo + hi) * 0.5 + (hi - lo) * (0.5 * g);
+                let (nv, _, p, t, nf) = field(xi);
                 // project along the normal field on the master cell
-                let mut xim = 0.0;
+                let mut xim = zero;
                 let mut ok = false;
                 for _ in 0..30 {
                     let (pm, tm) = point_and_tangent(mkind, &xm, xim);
-                    let r = cross([pm[0] - p[0], pm[1] - p[1]], nf);
-                    let dr = cross(tm, nf);
-                    let step = r / dr;
+                    let step = cross([pm[0] - p[0], pm[1] - p[1]], nf) / cross(tm, nf);
                     xim -= step;
-                    if step.abs() < 1e-13 {
+                    if value(step).abs() < 1e-13 {
                         ok = true;
                         break;
                     }
                 }
-                if !ok || xim.abs() > 1.0 + 1e-9 {
+                if !ok || value(xim).abs() > 1.0 + 1e-9 {
                     continue;
                 }
+                any = true;
                 let (mut pm, _) = point_and_tangent(mkind, &xm, xim);
                 let mut ps = p;
                 if self.small {
                     // geometry on the reference configuration, gap with the displacements
                     let (dm, _) = point_and_tangent(mkind, &um, xim);
-                    let (ds, _) = point_and_tangent(kind, &us, xi);
+                    let (ds, _) = point_and_tangent(kind, us, xi);
                     pm = [pm[0] + dm[0], pm[1] + dm[1]];
                     ps = [p[0] + ds[0], p[1] + ds[1]];
                 }
-                let ln = nf[0].hypot(nf[1]);
+                let ln = norm(nf);
                 let mut nhat = [nf[0] / ln, nf[1] / ln];
                 if self.small {
                     // Small kinematics works on the reference configuration, where curved
@@ -176,87 +284,82 @@ impl Mortar {
                     // its compliance), so its normal is the compliance-weighted mean
                     // c_m n_s − c_s n_m: the bisector for equal bodies, the stiff side's
                     // normal against a much softer one, and the same whichever side is the
-                    // slave.
-                    let nm = self.master_normal(mesh, u, im, xim);
+                    // slave. (Reference geometry: constants for the tangent.)
+                    let nmas = self.master_normal(mesh, u, im, value(xim));
                     let (cs, cm) = (self.compliance.0[ic], self.compliance.1[im]);
                     let (ws, wm) = if cs + cm > 0.0 { (cm, cs) } else { (1.0, 1.0) };
-                    let b = [ws * nhat[0] - wm * nm[0], ws * nhat[1] - wm * nm[1]];
-                    let lb = b[0].hypot(b[1]);
-                    if lb > 1e-12 {
+                    let b = [nhat[0] * ws - wm * nmas[0], nhat[1] * ws - wm * nmas[1]];
+                    let lb = norm(b);
+                    if value(lb) > 1e-12 {
                         nhat = [b[0] / lb, b[1] / lb];
                     }
                 }
                 let gap = (pm[0] - ps[0]) * nhat[0] + (pm[1] - ps[1]) * nhat[1];
-                let w = gw[q] * 0.5 * (hi - lo) * t[0].hypot(t[1]) * self.measure(p);
-                let mut nm = [0.0; MAX_NODES];
-                shape(mkind, [xim, 0.0], &mut nm);
+                let w = (hi - lo) * norm(t) * self.measure(p) * (gw[q] * 0.5);
+                let (nm, _) = seg_shape(mkind, xim);
                 // slip since the step start along τ̂ (slave relative to master)
                 let tau = [-nhat[1], nhat[0]];
                 let slip = if self.friction.is_some() {
-                    let mut rel = [0.0; 2];
+                    let mut rel = [zero; 2];
                     for c in 0..2 {
                         for (a, &n) in snodes.iter().enumerate() {
-                            rel[c] += nv[a] * (u[2 * n + c] - self.u_start[2 * n + c]);
+                            rel[c] += nv[a] * (us[a][c] - self.u_start[2 * n + c]);
                         }
                         for (b, &n) in mnodes.iter().enumerate() {
-                            rel[c] -= nm[b] * (u[2 * n + c] - self.u_start[2 * n + c]);
+                            rel[c] -= nm[b] * (um[b][c] - self.u_start[2 * n + c]);
                         }
                     }
                     rel[0] * tau[0] + rel[1] * tau[1]
                 } else {
-                    0.0
+                    zero
                 };
                 for j in 0..nn {
-                    let phi: f64 = (0..nn).map(|b| amat[j][b] * nv[b]).sum();
-                    let k = self.mult_of[&snodes[j]];
-                    out.gap.push((k, w * phi * gap));
-                    out.cover.push((k, w * nv[j]));
-                    for a in 0..nn {
-                        for comp in 0..2 {
-                            out.force
-                                .push((k, 2 * snodes[a] + comp, w * phi * nv[a] * nhat[comp]));
-                        }
+                    let mut phi = zero;
+                    for b in 0..nn {
+                        phi += amat[j][b] * nv[b];
                     }
-                    for (b, &mn) in mnodes.iter().enumerate() {
-                        for comp in 0..2 {
-                            out.force
-                                .push((k, 2 * mn + comp, -w * phi * nm[b] * nhat[comp]));
+                    let wphi = w * phi;
+                    o.gap[j] += wphi * gap;
+                    o.cover[j] += value(w * nv[j]);
+                    for comp in 0..2 {
+                        for a in 0..nn {
+                            o.force[j][a][comp] += wphi * nv[a] * nhat[comp];
+                        }
+                        for b in 0..mnodes.len() {
+                            o.force[j][3 + b][comp] -= wphi * nm[b] * nhat[comp];
                         }
                     }
                     if self.friction.is_some() {
-                        out.slip.push((k, w * phi * slip));
-                        for a in 0..nn {
-                            for comp in 0..2 {
-                                out.tforce.push((
-                                    k,
-                                    2 * snodes[a] + comp,
-                                    w * phi * nv[a] * tau[comp],
-                                ));
+                        o.slip[j] += wphi * slip;
+                        for comp in 0..2 {
+                            for a in 0..nn {
+                                o.tforce[j][a][comp] += wphi * nv[a] * tau[comp];
                             }
-                        }
-                        for (b, &mn) in mnodes.iter().enumerate() {
-                            for comp in 0..2 {
-                                out.tforce
-                                    .push((k, 2 * mn + comp, -w * phi * nm[b] * tau[comp]));
+                            for b in 0..mnodes.len() {
+                                o.tforce[j][3 + b][comp] -= wphi * nm[b] * tau[comp];
                             }
                         }
                     }
                 }
             }
+            if any {
+                sink(o);
+            }
         }
-        out
+        d
     }
 }
 
-fn invert(m: &[[f64; 3]; 3], n: usize) -> [[f64; 3]; 3] {
+/// Gauss–Jordan inverse of the leading n×n block (n ≤ 3), pivoting on the values.
+fn invert<T: Real>(m: &[[T; 3]; 3], n: usize) -> [[T; 3]; 3] {
     let mut a = *m;
-    let mut inv = [[0.0; 3]; 3];
-    for i in 0..n {
-        inv[i][i] = 1.0;
+    let mut inv = [[constant::<T>(0.0); 3]; 3];
+    for (i, row) in inv.iter_mut().enumerate().take(n) {
+        row[i] = constant(1.0);
     }
     for col in 0..n {
         let piv = (col..n)
-            .max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))
+            .max_by(|&i, &j| value(a[i][col]).abs().total_cmp(&value(a[j][col]).abs()))
             .unwrap();
         a.swap(col, piv);
         inv.swap(col, piv);
@@ -269,8 +372,9 @@ fn invert(m: &[[f64; 3]; 3], n: usize) -> [[f64; 3]; 3] {
             if r != col {
                 let f = a[r][col];
                 for j in 0..n {
-                    a[r][j] -= f * a[col][j];
-                    inv[r][j] -= f * inv[col][j];
+                    let (ac, ic) = (a[col][j], inv[col][j]);
+                    a[r][j] -= f * ac;
+                    inv[r][j] -= f * ic;
                 }
             }
         }
