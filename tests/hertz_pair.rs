@@ -30,6 +30,8 @@ struct Answer {
     /// Σ|f_x| / Σ|f_y| of the contact forces on the master's nodes
     master_tangential: f64,
     iterations: usize,
+    /// (x, pressure) of every slave node
+    samples: Vec<(f64, f64)>,
 }
 
 fn case_text(
@@ -162,6 +164,7 @@ fn solve(axisymmetric: bool, quadratic: bool, size: f64, slave_upper: bool) -> A
         midplane_offset: (probe("tip") - 0.5 * (cu + cl)) / (cu - cl),
         master_tangential: fx / fy,
         iterations: out.report.total_iterations,
+        samples,
     }
 }
 
@@ -212,6 +215,22 @@ fn check(axisymmetric: bool, quadratic: bool, size: f64) {
         assert!(
             (x.pole_upper / x.pole_lower - 1.0).abs() < 0.01,
             "{what}: pole stresses"
+        );
+        // what pressure.csv gives is a pressure at every slave node, vertex and mid-side
+        // alike: within 1 % of p0 of Hertz's p0 √(1 − (x/a)²) inside 0.9 a
+        let worst = x
+            .samples
+            .iter()
+            .filter(|s| s.0.abs() < 0.9 * a)
+            .map(|s| (s.1 - p0 * (1.0 - (s.0 / a).powi(2)).sqrt()).abs() / p0)
+            .fold(0.0f64, f64::max);
+        println!(
+            "{what}: nodal pressures within 0.9 a at most {:.3} % of p0 from Hertz",
+            100.0 * worst
+        );
+        assert!(
+            worst < 0.01,
+            "{what}: nodal pressure {worst} of p0 from Hertz"
         );
         assert!(
             x.midplane_offset.abs() < 1e-3,
