@@ -185,3 +185,47 @@ fn hertz_study_writes_levels_and_rates() {
     assert!(String::from_utf8_lossy(&bad.stderr)
         .contains("--kinematics 'medium' is not one of small, large, both"));
 }
+
+#[test]
+fn mesh_refine_splits_cells_and_keeps_groups() {
+    let d = temp_dir("refine");
+    let f = d.join("plate.msh");
+    std::fs::write(&f, MSH).unwrap();
+    let out_file = d.join("fine.msh");
+    let out = tribo()
+        .args(["mesh", "refine"])
+        .arg(&f)
+        .arg(&out_file)
+        .args(["--split", "3"])
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = tribo()
+        .args(["mesh", "info", "--json"])
+        .arg(&out_file)
+        .output()
+        .unwrap();
+    let v: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(v["nodes"], 16);
+    assert_eq!(v["cells"]["Quad4"], 9);
+    assert_eq!(v["cells"]["Seg2"], 3);
+    assert_eq!(v["groups"]["Plate"]["cells"], 9);
+    assert_eq!(v["groups"]["Edge"]["nodes"], 4);
+    // a factor out of range: exit 2, the message says what is allowed, nothing written
+    let bad = d.join("bad.msh");
+    let out = tribo()
+        .args(["mesh", "refine"])
+        .arg(&f)
+        .arg(&bad)
+        .args(["--split", "0"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("--split must be between 1 and 16"), "{err}");
+    assert!(!bad.exists());
+}

@@ -99,17 +99,30 @@ fn output_format(out: &Path, format: Option<&str>) -> Result<&'static str> {
 
 /// `tribo mesh convert IN OUT [--format F]`
 pub fn convert(input: &Path, output: &Path, format: Option<&str>) -> Result<i32> {
-    use crate::mesh::gmsh_write::{self, MshVersion};
     let fmt = output_format(output, format)?;
     let mesh = crate::mesh::read(input)?;
+    write(input, output, fmt, &mesh)
+}
+
+/// `tribo mesh refine IN OUT --split N [--format F]`
+pub fn refine(input: &Path, output: &Path, split: usize, format: Option<&str>) -> Result<i32> {
+    let fmt = output_format(output, format)?;
+    let mesh = crate::mesh::read(input)?;
+    let refined = crate::mesh::refine::split(&mesh, split)?;
+    write(input, output, fmt, &refined)
+}
+
+/// Writes `mesh` (read from `input`) to `output` in format `fmt` and says what it wrote.
+fn write(input: &Path, output: &Path, fmt: &str, mesh: &crate::mesh::Mesh) -> Result<i32> {
+    use crate::mesh::gmsh_write::{self, MshVersion};
     match fmt {
-        "msh41" => gmsh_write::write(output, &mesh, MshVersion::V41)?,
-        "msh22" => gmsh_write::write(output, &mesh, MshVersion::V22)?,
+        "msh41" => gmsh_write::write(output, mesh, MshVersion::V41)?,
+        "msh22" => gmsh_write::write(output, mesh, MshVersion::V22)?,
         "med" => {
             let name = input.file_stem().and_then(|s| s.to_str()).unwrap_or("mesh");
-            crate::mesh::med_write::write(output, &mesh, name)?
+            crate::mesh::med_write::write(output, mesh, name)?
         }
-        _ => crate::post::vtu::write_mesh(output, &mesh)?,
+        _ => crate::post::vtu::write_mesh(output, mesh)?,
     }
     let groups = mesh.group_names().len();
     println!(

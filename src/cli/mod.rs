@@ -119,6 +119,18 @@ enum MeshCommand {
         #[arg(long)]
         format: Option<String>,
     },
+    /// Splits every cell of a mesh n × n (a triangle into n², a segment into n), keeping
+    /// its groups; new nodes follow curved quadratic edges. Output format as for convert.
+    Refine {
+        input: PathBuf,
+        output: PathBuf,
+        /// Refinement factor n (1 to 16).
+        #[arg(long)]
+        split: usize,
+        /// msh41, msh22, med or vtu (default: from the extension of OUTPUT).
+        #[arg(long)]
+        format: Option<String>,
+    },
     /// Compares two meshes (any readable format): nodes, cells and groups.
     /// Exit status 0 when they are the same.
     Compare {
@@ -177,6 +189,15 @@ pub fn main() -> Result<i32> {
                     format,
                 },
         } => mesh::convert(&input, &output, format.as_deref()),
+        Command::Mesh {
+            command:
+                MeshCommand::Refine {
+                    input,
+                    output,
+                    split,
+                    format,
+                },
+        } => mesh::refine(&input, &output, split, format.as_deref()),
         Command::Mesh {
             command: MeshCommand::Compare { first, second, tol },
         } => mesh::compare(&first, &second, tol),

@@ -12,6 +12,7 @@
 //! | `families.rs` | entities partitioned by their set of groups (for the writers) |
 //! | `vtu_read.rs` | VTU mesh reader (uncompressed ASCII / raw appended) |
 //! | `compare.rs` | are two meshes the same (nodes, cells, groups)? |
+//! | `refine.rs` | uniform refinement: every cell split n × n, groups kept (`tribo mesh refine`) |
 //! | `quadtree.rs` | balanced quadtree → conforming graded quad/triangle cells |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
 //!
@@ -29,6 +30,7 @@ pub mod med;
 pub mod med_write;
 pub mod quadtree;
 pub mod quality;
+pub mod refine;
 pub mod topology;
 pub mod vtu_read;
 
