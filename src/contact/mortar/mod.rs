@@ -256,15 +256,19 @@ impl ContactPair for Mortar {
                 .collect(),
             None => vec![0.0; g0.len()],
         };
+        let touch: Vec<bool> = (0..self.active.len())
+            .map(|k| self.touching(mesh, &u, self.mult_nodes[k]))
+            .collect();
         for k in 0..self.active.len() {
             let adjusted = self.offset[k] != 0.0;
-            self.active[k] = facing[k] && (adjusted || self.touching(mesh, &u, self.mult_nodes[k]));
+            self.active[k] = facing[k] && (adjusted || touch[k]);
         }
-        // A touching node without weight (a quadratic slave's corner on the axis) holds
-        // nothing: the weighted nodes of its cells, the nearest that can, start active too
-        // (a body held by contact alone would otherwise start free).
+        // A touching node without weight (a quadratic slave's corner on the axis, which
+        // faces nothing by weight either) holds nothing: the weighted nodes of its cells,
+        // the nearest that can, start active too (a body held by contact alone would
+        // otherwise start free).
         for nodes in &self.cell_mults {
-            if nodes.iter().any(|&k| self.active[k] && d[k] == 0.0) {
+            if nodes.iter().any(|&k| touch[k] && d[k] == 0.0) {
                 for &k in nodes {
                     self.active[k] |= facing[k] && d[k] != 0.0;
                 }
