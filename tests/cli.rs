@@ -191,14 +191,17 @@ fn mesh_refine_splits_cells_and_keeps_groups() {
     let d = temp_dir("refine");
     let f = d.join("plate.msh");
     std::fs::write(&f, MSH).unwrap();
+    let refine = |to: &std::path::Path, split: &str| {
+        tribo()
+            .args(["mesh", "refine"])
+            .arg(&f)
+            .arg(to)
+            .args(["--split", split])
+            .output()
+            .unwrap()
+    };
     let out_file = d.join("fine.msh");
-    let out = tribo()
-        .args(["mesh", "refine"])
-        .arg(&f)
-        .arg(&out_file)
-        .args(["--split", "3"])
-        .output()
-        .unwrap();
+    let out = refine(&out_file, "3");
     assert!(
         out.status.success(),
         "{}",
@@ -217,13 +220,7 @@ fn mesh_refine_splits_cells_and_keeps_groups() {
     assert_eq!(v["groups"]["Edge"]["nodes"], 4);
     // a factor out of range: exit 2, the message says what is allowed, nothing written
     let bad = d.join("bad.msh");
-    let out = tribo()
-        .args(["mesh", "refine"])
-        .arg(&f)
-        .arg(&bad)
-        .args(["--split", "0"])
-        .output()
-        .unwrap();
+    let out = refine(&bad, "0");
     assert_eq!(out.status.code(), Some(2));
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("--split must be between 1 and 16"), "{err}");
