@@ -23,6 +23,17 @@ pub trait ContactPair {
     );
     /// Updates statuses (and pairing) from the iterate; returns how many changed.
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
+    /// A hash of the pair's discrete statuses (active set, friction branches).
+    fn status_signature(&self) -> u64 {
+        0
+    }
+    /// Statuses of the problem linearised at the last evaluation (its gaps and slips
+    /// extended linearly to u), for active-set iterations at a fixed linearisation; how
+    /// many changed, or None if the pair does not keep a linearisation (its Newton
+    /// iterations already are such iterations, e.g. gaps linear in u).
+    fn linearised_status(&mut self, _mesh: &Mesh, _u: &[f64], _lam: &[f64]) -> Option<usize> {
+        None
+    }
     /// The load step converged at displacement u.
     fn commit(&mut self, u: &[f64]);
     fn restore(&mut self);

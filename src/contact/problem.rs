@@ -146,6 +146,32 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn status_signature(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for p in &self.pairs {
+            p.status_signature().hash(&mut h);
+        }
+        h.finish()
+    }
+
+    fn update_status_linearised(&mut self, x: &[f64], lambda: f64) -> Result<Option<usize>> {
+        let nf = self.solid.num_free();
+        let mut u = vec![0.0; self.solid.u.len()];
+        self.solid.displacement(&x[..nf], lambda, &mut u);
+        let lam = &x[nf..];
+        let mesh = self.solid.mesh;
+        let mut changes = Some(0);
+        for (p, &base) in self.pairs.iter_mut().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            changes = match (changes, p.linearised_status(mesh, &u, &lam[base..base + n])) {
+                (Some(a), Some(b)) => Some(a + b),
+                _ => None,
+            };
+        }
+        Ok(changes)
+    }
+
     fn imposed_change(&self, t0: f64, t1: f64) -> bool {
         self.solid.imposed_change(t0, t1)
     }

@@ -50,6 +50,15 @@ pub trait Nonlinear {
     fn update_status(&mut self, _x: &[f64], _lambda: f64) -> Result<usize> {
         Ok(0)
     }
+    /// Statuses of the problem linearised at the last evaluation, taken at the trial point
+    /// x (how many changed), or None where the problem keeps no such linearisation.
+    fn update_status_linearised(&mut self, _x: &[f64], _lambda: f64) -> Result<Option<usize>> {
+        Ok(None)
+    }
+    /// A hash of the discrete statuses (to recognise a cycle of active-set re-solves).
+    fn status_signature(&self) -> u64 {
+        0
+    }
     /// Whether status changes are worth an active-set re-solve from the same point (the
     /// bodies' factorisations stand; see `solve`).
     fn active_set_resolves(&self) -> bool {
@@ -175,6 +184,9 @@ const FROZEN_FINISH: f64 = 1e2;
 
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
+/// Re-solves on the linearised constraints in a row from one linearisation point (the
+/// primal-dual active set of a linear problem settles in a few, but may cycle).
+const MAX_LINEARISED_RESOLVES: usize = 8;
 
 /// x0 + Δx with K(x0, t0) Δx = −∂R/∂t (t1 − t0), the derivative taken by a difference
 /// over a millionth of the step; None if the tangent cannot be factorised.
@@ -301,13 +313,22 @@ pub fn solve(
         // re-solve from the last linearisation point with new statuses (see below)
         let mut resolve = false;
         let mut resolves = 0;
+        let mut linearised_resolves = 0;
+        let mut linearised_seen: Vec<u64> = vec![];
         // the plain Newton iterate a re-solve replaced
         let mut before_resolve: Option<Vec<f64>> = None;
         let mut last_size = f64::INFINITY;
         // c such that a chord step from the current point is predicted to leave c r² (see
         // below), while the last factorisation is that of this step's last linearisation
         let mut chord_coefficient: Option<f64> = None;
-        for it in 0..=settings.max_iterations {
+        // Newton iterations (linearisation points) of this step: re-solves at one point do
+        // not count toward `max_iterations` (each point has at most
+        // MAX_LINEARISED_RESOLVES, or MAX_RESOLVES, of them)
+        let mut newton_its = 0;
+        for it in 0.. {
+            if !resolve && it > 0 {
+                newton_its += 1;
+            }
             let t = std::time::Instant::now();
             // Near convergence (small residual, statuses settled) the tangent is probably not
             // needed: check the residual alone first, and assemble the tangent only if it
@@ -411,9 +432,12 @@ pub fn solve(
             // first corrections) that is not improving on any of the last three is not going
             // to come back in time; cut the step instead. (A contact zone that grows node by
             // node from a first touch starts far above the first residual and falls steadily.)
+            // (re-solves are left out: their residuals are those of the same point with
+            // other statuses, e.g. an augmentation on nodes still far open)
             let residuals: Vec<f64> = step
                 .iterations
                 .iter()
+                .filter(|i| !i.active_set_resolve)
                 .map(|i| i.relative_residual)
                 .collect();
             let best = residuals.iter().copied().fold(f64::INFINITY, f64::min);
@@ -425,7 +449,7 @@ pub fn solve(
                 .take(3)
                 .copied()
                 .fold(f64::INFINITY, f64::min);
-            if it >= 3 && rel > 1e3 * best && rel >= recent {
+            if !resolve && residuals.len() > 3 && rel > 1e3 * best && rel >= recent {
                 failure = Some(format!("divergence (residual {rel:.1e})"));
                 break;
             }
@@ -444,7 +468,7 @@ pub fn solve(
                 step.converged = true;
                 break;
             }
-            if it == settings.max_iterations {
+            if newton_its >= settings.max_iterations {
                 failure = Some(format!(
                     "no convergence in {} iterations",
                     settings.max_iterations
@@ -513,6 +537,37 @@ pub fn solve(
                 *xi += dx;
             }
             last_dx = Some(r.clone());
+            // Active-set iterations at a fixed linearisation: where the problem keeps one
+            // (mortar with large kinematics), statuses that change on the linearised
+            // constraints at the trial point are re-solved from the same point first, the
+            // correction then satisfying its own linearised complementarity; the plain
+            // statuses (nonlinear gaps) are taken once they settle.
+            let linearised =
+                if !chord && newton_its == 0 && linearised_resolves < MAX_LINEARISED_RESOLVES {
+                    problem.update_status_linearised(&x, lambda)?
+                } else {
+                    None
+                };
+            // (a set of statuses met before at this point is a cycle: go on from here)
+            let cycled = linearised.is_some_and(|ch| ch > 0) && {
+                let signature = problem.status_signature();
+                let seen = linearised_seen.contains(&signature);
+                linearised_seen.push(signature);
+                seen
+            };
+            if let Some(ch) = linearised.filter(|&ch| ch > 0 && !cycled) {
+                linearised_resolves += 1;
+                step.iterations.last_mut().unwrap().status_changes = ch;
+                if settings.verbose {
+                    eprintln!("                        {ch} status changes on the linearisation");
+                }
+                changes = ch;
+                resolve = true;
+                before_resolve = Some(std::mem::replace(&mut x, x_lin));
+                continue;
+            }
+            linearised_resolves = 0;
+            linearised_seen.clear();
             changes = problem.update_status(&x, lambda)?;
             step.iterations.last_mut().unwrap().status_changes = changes;
             if settings.verbose && changes > 0 {

@@ -6,7 +6,80 @@ use super::geometry::cross;
 use super::Mortar;
 use crate::mesh::Mesh;
 
+/// The weighted gaps and slips at the point of the last large-kinematics evaluation, with
+/// their derivatives by displacement (sparse rows over u's dofs): the first-order model of
+/// the constraints that the Newton correction from that point solves.
+pub(super) struct Linearisation {
+    pub u0: Vec<f64>,
+    pub g: Vec<f64>,
+    pub d: Vec<f64>,
+    pub facing: Vec<bool>,
+    pub slip: Vec<f64>,
+    pub dg: Vec<Vec<(usize, f64)>>,
+    pub ds: Vec<Vec<(usize, f64)>>,
+}
+
+impl Linearisation {
+    /// Value plus derivative times (u − u0) for each node's row.
+    fn extend(&self, value: &[f64], rows: &[Vec<(usize, f64)>], u: &[f64]) -> Vec<f64> {
+        value
+            .iter()
+            .zip(rows)
+            .map(|(v, row)| {
+                v + row
+                    .iter()
+                    .map(|&(c, w)| w * (u[c] - self.u0[c]))
+                    .sum::<f64>()
+            })
+            .collect()
+    }
+}
+
 impl Mortar {
+    /// Active set (and friction branches) of the linearised problem at u: the nonlinear
+    /// criterion with the gaps and slips of the last evaluation extended linearly. Large
+    /// kinematics far from the solution (a first iterate from a point contact pushes a
+    /// body many cells deep) distorts the cells where the nonlinear gaps are measured;
+    /// the linearised ones are those the correction itself satisfies.
+    pub(super) fn statuses_linearised(&mut self, u: &[f64], lam: &[f64]) -> Option<usize> {
+        let guard = self.linearisation.lock().unwrap();
+        let lin = guard.as_ref()?;
+        let nm = self.mult_nodes.len();
+        if lin.g.len() != nm || u.len() != lin.u0.len() {
+            return None;
+        }
+        let g = lin.extend(&lin.g, &lin.dg, u);
+        let sl = lin.extend(&lin.slip, &lin.ds, u);
+        let (d, facing) = (lin.d.clone(), lin.facing.clone());
+        drop(guard);
+        // Nodes to release (negative pressure) go first, those to close (penetrating)
+        // next: changing both at once cycles far from the solution (a first iterate from a
+        // point contact closes nodes far out, whose pressures then pull the inner ones).
+        let proposed: Vec<bool> = (0..nm)
+            .map(|j| facing[j] && d[j] != 0.0 && lam[j] - self.c * g[j] / d[j] > 0.0)
+            .collect();
+        let releases = (0..nm).any(|j| self.active[j] && !proposed[j]);
+        let mut changes = 0;
+        for j in 0..nm {
+            if proposed[j] != self.active[j] && (!releases || !proposed[j]) {
+                changes += 1;
+                self.active[j] = proposed[j];
+            }
+        }
+        if let Some(mu) = self.friction {
+            self.law.resize(nm, super::friction::Branch::Free);
+            let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            for j in 0..nm {
+                let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
+                if law != self.law[j] {
+                    changes += 1;
+                    self.law[j] = law;
+                }
+            }
+        }
+        Some(changes)
+    }
+
     /// Whether slave corner node n touches the master: its own gap, measured along its
     /// averaged normal, is below 1e-6 of the adjacent slave cell size. (The weighted gap of
     /// a single touching point is positive, so it cannot start the active set.)

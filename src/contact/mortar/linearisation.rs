@@ -19,6 +19,9 @@ use rayon::prelude::*;
 /// 10..16 (two per node, x then y).
 type Dual = DualSVec64<16>;
 
+/// Per multiplier index, (column, value) pairs sorted by column.
+pub(super) type SparseRows = Vec<Vec<(usize, f64)>>;
+
 fn seed(v: f64, slot: usize) -> Dual {
     Dual::from_re(v).derivative(slot)
 }
@@ -257,6 +260,8 @@ impl Mortar {
 
     /// The u-columns of the tangent with large kinematics; `gd` the weighted gaps and D_j,
     /// `fj` the force coefficients of the active nodes, `rows` the first multiplier row.
+    /// Returns the derivatives of every node's weighted gap and slip (per multiplier index,
+    /// by column).
     #[allow(clippy::too_many_arguments)]
     pub(super) fn exact_tangent(
         &self,
@@ -269,7 +274,7 @@ impl Mortar {
         law: &[Branch],
         rows: usize,
         k: &mut Triplets,
-    ) {
+    ) -> (SparseRows, SparseRows) {
         let (g, d) = gd;
         let nm = self.mult_nodes.len();
         let c = self.c;
@@ -341,5 +346,6 @@ impl Mortar {
                 }
             }
         }
+        (dg, ds)
     }
 }

@@ -120,6 +120,9 @@ pub struct Mortar {
     /// each master cell: the weights of the small-kinematics interface normal (equal by
     /// default: the bisector).
     pub compliance: (Vec<f64>, Vec<f64>),
+    /// Large kinematics: the constraints linearised at the last evaluation (for the
+    /// active-set iterations at a fixed linearisation, `linearised_status`).
+    linearisation: std::sync::Mutex<Option<active_set::Linearisation>>,
 }
 
 /// Adds each slave cell's `found` master cells to its pattern candidates.
@@ -199,6 +202,7 @@ impl Mortar {
             cell_mults,
             mult_coords: vec![],
             compliance: (vec![], vec![]),
+            linearisation: Default::default(),
         };
         m.compliance = (
             vec![1.0; m.slave.cells.len()],
@@ -388,7 +392,23 @@ impl ContactPair for Mortar {
             linear_tangent(&terms, self.c, &active, &d, &law, ndof + mult_base, nm, k);
         } else {
             let rows = ndof + mult_base;
-            self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
+            let (dg, ds) = self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
+            let mut cover = vec![0.0; nm];
+            for t in &terms {
+                for &(j, v) in &t.cover {
+                    cover[j] += v;
+                }
+            }
+            let facing = (0..nm).map(|j| cover[j] > 0.5 * d[j]).collect();
+            *self.linearisation.lock().unwrap() = Some(active_set::Linearisation {
+                u0: u.to_vec(),
+                g,
+                d,
+                facing,
+                slip: sl,
+                dg,
+                ds,
+            });
         }
         // pattern: every dof a cell may read couples with every dof and multiplier of its
         // cells
@@ -467,6 +487,20 @@ impl ContactPair for Mortar {
             }
         }
         changes
+    }
+
+    fn status_signature(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        self.active.hash(&mut h);
+        for l in &self.law {
+            format!("{l:?}").hash(&mut h);
+        }
+        h.finish()
+    }
+
+    fn linearised_status(&mut self, _mesh: &Mesh, u: &[f64], lam: &[f64]) -> Option<usize> {
+        self.statuses_linearised(u, lam)
     }
 
     fn commit(&mut self, u: &[f64]) {
