@@ -109,7 +109,7 @@ fn contact_tractions(
 /// that failed, and the outcome of the last converged state (None before any converged).
 pub struct Failure {
     pub error: Error,
-    pub report: Option<NewtonReport>,
+    pub report: Option<Box<NewtonReport>>,
     pub time: Option<f64>,
     pub partial: Option<Box<Outcome>>,
 }
@@ -193,10 +193,7 @@ pub fn run_keeping(
             .then(|| without_contact(case, mesh, &mut problem, &states, settings.keep_states));
         finish(solved, kept, report)
     } else {
-        let pairs = match build_pairs(case, mesh) {
-            Ok(p) => p,
-            Err(e) => return Err(e.into()),
-        };
+        let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
         // Contact tangents are saddle-point matrices, non-symmetric with friction and mortar
         // geometry terms: condensed on the contact interface (exact), or for a large
@@ -225,13 +222,13 @@ fn finish(
         }
         (Ok(()), Ok(None)) => Err(Failure {
             error: Error::solve("the solve ended without a converged state"),
-            report: Some(report),
+            report: Some(Box::new(report)),
             time,
             partial: None,
         }),
         (Ok(()), Err(error)) => Err(Failure {
             error,
-            report: Some(report),
+            report: Some(Box::new(report)),
             time,
             partial: None,
         }),
@@ -243,7 +240,7 @@ fn finish(
             });
             Err(Failure {
                 error,
-                report: Some(report),
+                report: Some(Box::new(report)),
                 time,
                 partial,
             })

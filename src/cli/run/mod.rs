@@ -48,7 +48,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             ..
         }) => return Err(error),
         Err(f) => {
-            let last = f.report.as_ref().and_then(last_time);
+            let last = f.report.as_deref().and_then(last_time);
             results["status"] = json!("failed");
             results["failure"] = json!({
                 "time": f.time,

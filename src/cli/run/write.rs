@@ -43,7 +43,7 @@ pub fn outcome_files(
     if case.output.vtu {
         let materials: Vec<String> = case.material.iter().map(|m| m.group.clone()).collect();
         let setting = Setting {
-            mesh: &mesh,
+            mesh,
             surfaces: &outcome.contact_surfaces,
             material_groups: &materials,
         };
@@ -72,7 +72,7 @@ pub fn outcome_files(
         }
     }
     for spec in &case.output.curve {
-        let nodes = crate::post::curve::chain(&mesh, &spec.group)?;
+        let nodes = crate::post::curve::chain(mesh, &spec.group)?;
         let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis\n");
         for (n, s) in nodes {
             let (x, st) = (mesh.coords[n], outcome.stress[n]);
@@ -196,8 +196,8 @@ pub fn outcome_files(
             "surface,node,x,y,pressure_initial,shear_initial,pressure_deformed,shear_deformed\n",
         );
         for (name, surf) in [("slave", slave), ("master", master)] {
-            let init = surface_tractions(&mesh, surf, &outcome.stress, None);
-            let def = surface_tractions(&mesh, surf, &outcome.stress, Some(&outcome.u));
+            let init = surface_tractions(mesh, surf, &outcome.stress, None);
+            let def = surface_tractions(mesh, surf, &outcome.stress, Some(&outcome.u));
             let mut rows: Vec<_> = init.iter().zip(&def).collect();
             rows.sort_by(|a, b| mesh.coords[a.0 .0][0].total_cmp(&mesh.coords[b.0 .0][0]));
             for (&(n, p, t), &(_, pd, td)) in rows {

@@ -53,7 +53,7 @@ pub fn floats(a: &Array, layout: &Layout, expected: usize) -> Result<Vec<f64>, S
                     .map_err(|_| format!("array '{}': '{w}' is not a number", a.name()))
             })
             .collect::<Result<Vec<f64>, String>>()?,
-        Data::Bytes(b) => decode(&b, ty, |v| Some(v as f64), |v| Some(v as f64), |v| Some(v))
+        Data::Bytes(b) => decode(&b, ty, |v| Some(v as f64), |v| Some(v as f64), Some)
             .ok_or_else(|| unreadable(a, ty, b.len()))?,
     };
     count(a, v, expected)
