@@ -220,7 +220,7 @@ fn unpack(buf: &[u8], header64: bool, zlib: bool) -> Result<Vec<u8>, String> {
         let before = out.len();
         // at most one byte more than announced: a larger block is an error, not a bomb
         flate2::read::ZlibDecoder::new(chunk)
-            .take(want as u64 + 1)
+            .take((want as u64).saturating_add(1))
             .read_to_end(&mut out)
             .map_err(|e| format!("block {}: zlib: {e}", i + 1))?;
         if out.len() - before != want {
