@@ -18,6 +18,8 @@ fn main() {
         default_hook(info);
     }));
     tribo::cli::keep_freed_memory();
+    // before any thread starts (they inherit its signal mask)
+    tribo::cli::run::signals::install();
     match tribo::cli::on_worker_thread(tribo::cli::main) {
         Ok(code) => std::process::exit(code),
         Err(e) => {

@@ -435,13 +435,15 @@ fn vtu_reader_takes_ascii_arrays_and_rejects_what_it_cannot_read() {
     assert_eq!(
         bad(
             "byte_order=\"LittleEndian\"",
-            "byte_order=\"LittleEndian\" compressor=\"vtkZLibDataCompressor\""
+            "byte_order=\"LittleEndian\" compressor=\"vtkLZ4DataCompressor\""
         ),
-        "b.vtu: compressed VTU files are not supported"
+        "b.vtu: compressor 'vtkLZ4DataCompressor' is not supported (only vtkZLibDataCompressor)"
     );
-    assert_eq!(
-        bad("format=\"ascii\">\n0 0 0", "format=\"binary\">\n0 0 0"),
-        "b.vtu: array 'Points': format 'binary' is not supported (ascii or appended raw)"
+    let e = bad("format=\"ascii\">\n0 0 0", "format=\"binary\">\n0 0 0");
+    // ("0 0 0 1 0 0 ..." without its spaces is base64, of a wrong size)
+    assert!(
+        e.starts_with("b.vtu: array 'Points' (binary): 3543485907 bytes announced"),
+        "{e}"
     );
     // Truncated raw appended data.
     let mesh = overlapping_groups();
@@ -452,4 +454,44 @@ fn vtu_reader_takes_ascii_arrays_and_rejects_what_it_cannot_read() {
         .unwrap_err()
         .to_string();
     assert!(e.starts_with("cut.vtu: array '"), "{e}");
+}
+
+/// MED holds 80 bytes of a group name: a longer one is refused, not cut (two names with
+/// the same first 80 bytes would merge into one group).
+#[test]
+fn med_writer_refuses_a_group_name_it_would_cut() {
+    let square = rectangle([0.0, 0.0], 1.0, 1.0, 1, 1, CellKind::Quad4, 0.0).unwrap();
+    let long = format!("{}_top", "x".repeat(80));
+    let mut b = MeshBuilder::new("long");
+    b.append(
+        &square,
+        |g| if g == "Top" { long.clone() } else { g.into() },
+    );
+    let mesh = b.finish().unwrap();
+    let p = tmp("long.med");
+    let _ = std::fs::remove_file(&p);
+    let e = med_write::write(&p, &mesh, "m").unwrap_err().to_string();
+    assert_eq!(
+        e,
+        format!(
+            "{}: group '{long}' is 84 bytes long; MED holds group names of at most 80 bytes \
+             (cut, it could merge with another group): rename it",
+            p.display()
+        )
+    );
+    assert!(!p.exists(), "nothing written");
+    // 80 bytes exactly is kept whole
+    let exact = "y".repeat(80);
+    let mut b = MeshBuilder::new("exact");
+    b.append(
+        &square,
+        |g| if g == "Top" { exact.clone() } else { g.into() },
+    );
+    med_write::write(&p, &b.finish().unwrap(), "m").unwrap();
+    let back = tribo::mesh::read(&p).unwrap();
+    assert!(
+        back.group_names().contains(&exact),
+        "{:?}",
+        back.group_names()
+    );
 }

@@ -5,27 +5,28 @@
 //! | `schema.rs` | serde structs of the TOML format (unknown keys rejected) |
 //! | `checks.rs` | every value finite and in range, every key meaningful, before any work |
 //! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
+//! | `solve.rs` | a run: the solve and its outcome, or what a failed one kept |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
 
 pub mod checks;
 pub mod loading;
 pub mod schema;
+pub mod solve;
 pub mod ssnp154;
+
+pub use solve::{run, run_keeping, Failure, Multipliers, Outcome, StepOutcome};
 
 use crate::assembly::dofs::{DofMap, Relation};
 use crate::assembly::Assembler;
 use crate::contact::mortar::Mortar;
 use crate::contact::pair::ContactPair;
 use crate::contact::point_segment::{self, InitialStatus, Integration, PointToSegment};
-use crate::contact::problem::ContactProblem;
 use crate::contact::surface::Surface;
 use crate::error::{Error, Result};
 use crate::fem::material::{Elastic, Modelisation};
 use crate::fem::solid::{Kinematics, SolidModel};
 use crate::mesh::{generate, CellKind, Mesh};
-use crate::post::stress::{cell_node_stresses, nodal_stresses, CellNodeStresses};
-use crate::solver::linear::Method;
-use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
+use crate::post::stress::{nodal_stresses, CellNodeStresses};
 use crate::solver::problem::SolidProblem;
 use schema::CaseFile;
 use std::path::{Path, PathBuf};
@@ -238,98 +239,6 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
     Ok(SolidProblem::with_loading(mesh, asm, loading))
 }
 
-/// What a run produces.
-pub struct Outcome {
-    pub report: NewtonReport,
-    /// The state after each converged load step (when the case writes VTU files).
-    pub steps: Vec<StepOutcome>,
-    /// Per contact pair: (slave node, pressure) from the multipliers.
-    pub contact_pressure: Vec<Vec<(usize, f64)>>,
-    /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
-    pub contact_multipliers: Vec<Multipliers>,
-    /// Per contact pair: (slave, master) surfaces.
-    pub contact_surfaces: Vec<(Surface, Surface)>,
-    /// Per contact pair: (slave node, tangential traction) with friction, and μ.
-    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
-    pub u: Vec<f64>,
-    pub reactions: Vec<f64>,
-    /// Nodal stresses averaged over all cells sharing a node.
-    pub stress: Vec<[f64; 4]>,
-    pub probes: Vec<(String, f64)>,
-}
-
-/// The fields of one converged load step.
-pub struct StepOutcome {
-    pub time: f64,
-    pub probes: Vec<(String, f64)>,
-    pub u: Vec<f64>,
-    pub reactions: Vec<f64>,
-    pub stress: Vec<[f64; 4]>,
-    pub contact_pressure: Vec<Vec<(usize, f64)>>,
-    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
-    pub contact_multipliers: Vec<Multipliers>,
-}
-
-/// (slave node, [normal, tangential] multiplier) of one contact pair.
-pub type Multipliers = Vec<(usize, [f64; 2])>;
-
-fn step_outcome(
-    case: &CaseFile,
-    mesh: &Mesh,
-    solid: &SolidProblem,
-    time: f64,
-    contact_pressure: Vec<Vec<(usize, f64)>>,
-    contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
-) -> Result<StepOutcome> {
-    let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
-    let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(solid, p, &elno, &stress)?));
-    }
-    Ok(StepOutcome {
-        time,
-        probes,
-        u: solid.u.clone(),
-        reactions: solid.reactions(),
-        stress,
-        contact_pressure,
-        contact_shear,
-        contact_multipliers: vec![],
-    })
-}
-
-/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers, and the raw
-/// multipliers.
-#[allow(clippy::type_complexity)]
-fn contact_tractions(
-    cp: &ContactProblem,
-) -> Result<(
-    Vec<Vec<(usize, f64)>>,
-    Vec<(f64, Vec<(usize, f64)>)>,
-    Vec<Multipliers>,
-)> {
-    let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
-    for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
-        let lam = &cp.lam[b..b + p.num_multipliers()];
-        pressures.push(p.nodal_pressures(lam));
-        shear.push((p.friction(), p.nodal_shear(lam)));
-        multipliers.push(p.nodal_multipliers(lam));
-    }
-    // never a non-finite value in an output
-    for (i, (p, s)) in pressures.iter().zip(&shear).enumerate() {
-        if let Some(&(n, v)) = p.iter().chain(&s.1).find(|(_, v)| !v.is_finite()) {
-            return Err(Error::Solve(format!(
-                "[[contact]] {}: the contact traction at node {} is {v} (a degenerate \
-                 contact there: a node with no share of the surface?)",
-                i + 1,
-                n + 1
-            )));
-        }
-    }
-    Ok((pressures, shear, multipliers))
-}
-
 /// Stress component of a probe field (4 = von Mises), None for displacements.
 fn probe_component(spec: &schema::ProbeSpec) -> Result<Option<usize>> {
     Ok(match spec.field.as_str() {
@@ -349,7 +258,7 @@ fn probe_component(spec: &schema::ProbeSpec) -> Result<Option<usize>> {
 }
 
 /// The nodes a probe averages over: its group's, or the node nearest to its point.
-fn probe_nodes(mesh: &Mesh, spec: &schema::ProbeSpec) -> Result<Vec<usize>> {
+pub(crate) fn probe_nodes(mesh: &Mesh, spec: &schema::ProbeSpec) -> Result<Vec<usize>> {
     let what = format!("probe '{}'", spec.name);
     match (&spec.group, spec.at) {
         (Some(g), None) => mesh
@@ -667,123 +576,4 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         )));
     }
     Ok(pairs)
-}
-
-/// The converged states at output times, and the final state (last, so that evaluating
-/// them in order leaves the problem in its final state), each with whether it is an output.
-fn output_states(
-    mut states: Vec<(f64, Vec<f64>)>,
-    is_output: impl Fn(f64) -> bool,
-) -> Vec<(f64, Vec<f64>, bool)> {
-    let last = states.pop();
-    let mut out: Vec<(f64, Vec<f64>, bool)> = states
-        .into_iter()
-        .filter(|s| is_output(s.0))
-        .map(|(t, x)| (t, x, true))
-        .collect();
-    if let Some((t, x)) = last {
-        out.push((t, x, is_output(t)));
-    }
-    out
-}
-
-/// Solves a case on a mesh.
-pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
-    let mut problem = build_problem(case, mesh)?;
-    // Probes are checked before the (possibly long) solve.
-    for c in &case.output.curve {
-        crate::post::curve::chain(mesh, &c.group)
-            .map_err(|e| Error::model(format!("[[output.curve]] '{}': {e}", c.name)))?;
-    }
-    for p in &case.output.probe {
-        probe_nodes(mesh, p)?;
-        if let Some(g) = &p.stress_group {
-            mesh.cell_group(g)
-                .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
-        }
-    }
-    let (times, output_times) = loading::schedule(case, &problem.loading)?;
-    let settings = NewtonSettings {
-        steps: case.solver.steps.max(1),
-        times,
-        tolerance: case.solver.tolerance,
-        max_iterations: case.solver.max_iterations,
-        verbose,
-        keep_states: case.output.history,
-        ..Default::default()
-    };
-    let end = *settings.times.last().unwrap_or(&1.0);
-    // the converged states that are output times (all of them by default)
-    let is_output = |t: f64| {
-        output_times
-            .as_ref()
-            .is_none_or(|o| o.iter().any(|&x| (x - t).abs() <= 1e-9 * end))
-    };
-    let mut steps = vec![];
-    let mut contact_multipliers = vec![];
-    let (report, contact_pressure, contact_surfaces, contact_shear) = if case.contact.is_empty() {
-        let mut report = newton::solve(&mut problem, &settings, Method::Cholesky)?;
-        let states = output_states(std::mem::take(&mut report.states), is_output);
-        let mut r = vec![0.0; problem.num_unknowns()];
-        for (lf, x, output) in &states {
-            problem.evaluate(x, *lf, &mut r, false)?;
-            if *output {
-                steps.push(step_outcome(case, mesh, &problem, *lf, vec![], vec![])?);
-            }
-        }
-        (report, vec![], vec![], vec![])
-    } else {
-        let pairs = build_pairs(case, mesh)?;
-        let mut cp = ContactProblem::new(problem, pairs);
-        // Contact tangents are saddle-point matrices, non-symmetric with friction and mortar
-        // geometry terms: condensed on the contact interface (exact), or for a large
-        // interface LDLᵀ of a symmetric approximation with GMRES on the exact matrix (LU if
-        // that fails).
-        let method = Method::SaddleLdlt;
-        let mut report = newton::solve(&mut cp, &settings, method)?;
-        // Outputs of each converged step; the last state is the final one, so the problem
-        // is left where the solve left it.
-        let states = output_states(std::mem::take(&mut report.states), is_output);
-        let mut r = vec![0.0; cp.num_unknowns()];
-        for (lf, x, output) in &states {
-            cp.evaluate(x, *lf, &mut r, false)?;
-            if !output {
-                continue;
-            }
-            let (p, sh, m) = contact_tractions(&cp)?;
-            let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
-            step.contact_multipliers = m;
-            steps.push(step);
-        }
-        let (pressures, shear, multipliers) = contact_tractions(&cp)?;
-        let surfaces = cp
-            .pairs
-            .iter()
-            .map(|p| {
-                let (s, m) = p.surfaces();
-                (s.clone(), m.clone())
-            })
-            .collect();
-        problem = cp.solid;
-        contact_multipliers = multipliers;
-        (report, pressures, surfaces, shear)
-    };
-    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
-    let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(&problem, p, &elno, &stress)?));
-    }
-    Ok(Outcome {
-        report,
-        steps,
-        contact_pressure,
-        contact_multipliers,
-        contact_surfaces,
-        contact_shear,
-        reactions: problem.reactions(),
-        u: problem.u.clone(),
-        stress,
-        probes,
-    })
 }

@@ -2,7 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `run.rs` | `tribo run CASE.toml [-o DIR]` |
+//! | `run/` | `tribo run CASE.toml [-o DIR]`: the outputs, written whole or not at all |
 //! | `mesh.rs` | `tribo mesh info`, `mesh convert`, `mesh compare` |
 //! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
 //! | `report.rs` | `tribo validate --report DIR`: report.html with inline SVG plots |

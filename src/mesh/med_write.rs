@@ -40,8 +40,22 @@ fn counted<'g>(
     ds
 }
 
-/// Writes `mesh` as a MED file named `mesh_name` inside (atomically).
+/// The bytes MED gives a group name (`GRO/NOM` rows).
+pub const GROUP_NAME_BYTES: usize = 80;
+
+/// Writes `mesh` as a MED file named `mesh_name` inside (atomically). A group name longer
+/// than MED holds is refused: cut, it could merge with another group.
 pub fn write(path: &Path, mesh: &Mesh, mesh_name: &str) -> Result<()> {
+    for name in mesh.group_names() {
+        if name.len() > GROUP_NAME_BYTES {
+            return Err(Error::model(format!(
+                "{}: group '{name}' is {} bytes long; MED holds group names of at most \
+                 {GROUP_NAME_BYTES} bytes (cut, it could merge with another group): rename it",
+                path.display(),
+                name.len()
+            )));
+        }
+    }
     let bytes = to_bytes(mesh, mesh_name)
         .map_err(|e| Error::model(format!("{}: cannot encode MED: {e}", path.display())))?;
     crate::error::write_atomic(path, &bytes)
@@ -164,9 +178,13 @@ fn family_table(
     let mut t = parent.create_group(table);
     for (i, set) in fams.sets.iter().enumerate().skip(1) {
         let num = sign * i as i64;
-        // Family names are at most 64 characters in MED.
+        // Family names are at most 64 characters in MED; the number keeps them apart.
         let mut name = format!("FAM_{num}_{}", set.join("_"));
-        name.truncate(64);
+        let mut end = name.len().min(64);
+        while !name.is_char_boundary(end) {
+            end -= 1;
+        }
+        name.truncate(end);
         let mut f = t.create_group(&name);
         f.set_attr("NUM", AttrValue::I64(num));
         let mut gro = f.create_group("GRO");

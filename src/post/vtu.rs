@@ -31,6 +31,24 @@ pub fn write(path: &Path, mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Res
     crate::error::write_atomic(path, &to_bytes(mesh, cells, fields))
 }
 
+/// `text` as an XML attribute value (group names are the user's: `a<b&"c'` stays that).
+pub fn escape(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            // (a parser would turn them into spaces)
+            '\n' | '\r' | '\t' => out.push_str(&format!("&#{};", c as u32)),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 pub fn to_bytes(mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Vec<u8> {
     let mut xml = String::new();
     let mut data: Vec<u8> = vec![];
@@ -85,10 +103,11 @@ pub fn to_bytes(mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Vec<u8> {
                 components,
             } => {
                 let off = append(f64s(&mut values.iter().copied()));
+                let name = escape(name);
                 let names: String = components
                     .iter()
                     .enumerate()
-                    .map(|(i, c)| format!(" ComponentName{i}=\"{c}\""))
+                    .map(|(i, c)| format!(" ComponentName{i}=\"{}\"", escape(c)))
                     .collect();
                 point_xml.push_str(&format!(
                     "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{ncomp}\"{names} format=\"appended\" offset=\"{off}\"/>\n"
@@ -100,12 +119,14 @@ pub fn to_bytes(mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Vec<u8> {
                 values,
             } => {
                 let off = append(f64s(&mut values.iter().copied()));
+                let name = escape(name);
                 cell_xml.push_str(&format!(
                     "<DataArray type=\"Float64\" Name=\"{name}\" NumberOfComponents=\"{ncomp}\" format=\"appended\" offset=\"{off}\"/>\n"
                 ));
             }
             Field::CellInt { name, values } => {
                 let off = append(values.iter().flat_map(|v| v.to_le_bytes()).collect());
+                let name = escape(name);
                 cell_xml.push_str(&format!(
                     "<DataArray type=\"Int32\" Name=\"{name}\" format=\"appended\" offset=\"{off}\"/>\n"
                 ));
@@ -183,6 +204,7 @@ pub fn write_pvd(path: &Path, entries: &[(f64, String)]) -> Result<()> {
         "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n",
     );
     for (t, file) in entries {
+        let file = escape(file);
         xml.push_str(&format!(
             "<DataSet timestep=\"{t:e}\" group=\"\" part=\"0\" file=\"{file}\"/>\n"
         ));

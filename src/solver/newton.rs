@@ -221,12 +221,25 @@ pub fn solve(
     settings: &NewtonSettings,
     method: Method,
 ) -> Result<NewtonReport> {
+    let mut report = NewtonReport::default();
+    solve_into(problem, settings, method, &mut report)?;
+    Ok(report)
+}
+
+/// `solve` that fills `report` as it goes, so that a failed solve still tells what it did:
+/// its steps, and in `states` the converged ones (with `keep_states`), or at least the
+/// last converged one when a step fails after some converged.
+pub fn solve_into(
+    problem: &mut dyn Nonlinear,
+    settings: &NewtonSettings,
+    method: Method,
+    report: &mut NewtonReport,
+) -> Result<()> {
     let n = problem.num_unknowns();
     let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
     let mut lin = LinearSolver::new(method);
     lin.n_primal = problem.num_primal();
-    let mut report = NewtonReport::default();
     let ends = settings.step_ends();
     let t_end = *ends.last().unwrap_or(&1.0);
     let mut lambda_done = 0.0;
@@ -617,6 +630,14 @@ pub fn solve(
         }
         let why = failure.unwrap_or_default();
         if cuts >= settings.max_cuts {
+            // x_start is the last converged state (when a step converged at all)
+            let kept = report.states.last().is_some_and(|s| s.0 == lambda_done);
+            if lambda_done > 0.0 && !kept {
+                report.states.push((lambda_done, x_start));
+            }
+            report.symbolic_factorizations = lin.symbolic_count;
+            report.gmres_stalls = lin.gmres_stalls;
+            report.numeric_factorizations = lin.numeric_count;
             return Err(Error::solve(format!(
                 "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}"
             )));
@@ -635,5 +656,5 @@ pub fn solve(
     report.symbolic_factorizations = lin.symbolic_count;
     report.gmres_stalls = lin.gmres_stalls;
     report.numeric_factorizations = lin.numeric_count;
-    Ok(report)
+    Ok(())
 }

@@ -1,34 +1,57 @@
-//! `tribo run CASE.toml [-o DIR] [-v]`
+//! The files of a run's outcome: result.vtu and the steps' series, curves, pressures,
+//! tractions, history.csv, and the results.json entries that describe them.
 
-use crate::case;
+use crate::case::schema::CaseFile;
+use crate::case::{self, Outcome};
 use crate::error::{write_atomic, Result};
+use crate::mesh::Mesh;
 use crate::post::contact_pressure::{half_width, surface_tractions};
 use crate::post::plot;
 use crate::post::result_vtu::{write_series, write_state, Setting, State};
 use serde_json::json;
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
-pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
-    let t0 = Instant::now();
-    let (case, dir) = case::load(path)?;
-    let mesh = case::build_mesh(&case.mesh, &dir)?;
-    let outcome = case::run(&case, &mesh, verbose)?;
-    let out_dir: PathBuf = match output {
-        Some(o) => o.to_path_buf(),
-        None => dir.join(path.file_stem().unwrap_or_default()),
-    };
+/// Where the files are written (the temporary folder) and where they are listed (the
+/// output folder they end up in).
+pub struct Dir<'a> {
+    pub write: &'a Path,
+    pub shown: &'a Path,
+}
+
+impl Dir<'_> {
+    /// The path to write `rel` at; its final name goes to `files`.
+    pub fn file(&self, rel: &str, files: &mut Vec<String>) -> PathBuf {
+        files.push(self.shown.join(rel).display().to_string());
+        self.write.join(rel)
+    }
+    /// The final name of a written path.
+    fn shown(&self, written: &Path) -> String {
+        let rel = written.strip_prefix(self.write).unwrap_or(written);
+        self.shown.join(rel).display().to_string()
+    }
+}
+
+/// Writes the files of `outcome` in `dir`; returns the results.json entries: probes,
+/// reactions, history, contact, solver, files (the caller adds the run's own).
+pub fn outcome_files(
+    case: &CaseFile,
+    mesh: &Mesh,
+    outcome: &Outcome,
+    dir: &Dir,
+) -> Result<serde_json::Value> {
     let mut files = vec![];
     if case.output.vtu {
         let materials: Vec<String> = case.material.iter().map(|m| m.group.clone()).collect();
         let setting = Setting {
-            mesh: &mesh,
+            mesh,
             surfaces: &outcome.contact_surfaces,
             material_groups: &materials,
         };
-        let f = out_dir.join("result.vtu");
-        write_state(&f, &setting, &final_state(&outcome))?;
-        files.push(f.display().to_string());
+        write_state(
+            &dir.file("result.vtu", &mut files),
+            &setting,
+            &final_state(outcome),
+        )?;
         let states: Vec<(f64, State)> = outcome
             .steps
             .iter()
@@ -44,12 +67,12 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                 (s.time, st)
             })
             .collect();
-        for f in write_series(&out_dir.join("steps"), "step", &setting, &states)? {
-            files.push(f.display().to_string());
+        for f in write_series(&dir.write.join("steps"), "step", &setting, &states)? {
+            files.push(dir.shown(&f));
         }
     }
     for spec in &case.output.curve {
-        let nodes = crate::post::curve::chain(&mesh, &spec.group)?;
+        let nodes = crate::post::curve::chain(mesh, &spec.group)?;
         let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis\n");
         for (n, s) in nodes {
             let (x, st) = (mesh.coords[n], outcome.stress[n]);
@@ -67,9 +90,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                 crate::fem::material::von_mises(&st)
             ));
         }
-        let f = out_dir.join(format!("curve_{}.csv", spec.name));
-        write_atomic(&f, text.as_bytes())?;
-        files.push(f.display().to_string());
+        write_atomic(
+            &dir.file(&format!("curve_{}.csv", spec.name), &mut files),
+            text.as_bytes(),
+        )?;
     }
     let n_pairs = outcome.contact_pressure.len();
     for (i, pressures) in outcome.contact_pressure.iter().enumerate() {
@@ -107,9 +131,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                 y + uy
             ));
         }
-        let f = out_dir.join(format!("{stem}.csv"));
-        write_atomic(&f, text.as_bytes())?;
-        files.push(f.display().to_string());
+        write_atomic(
+            &dir.file(&format!("{stem}.csv"), &mut files),
+            text.as_bytes(),
+        )?;
         let computed: Vec<(f64, f64)> = rows.iter().map(|r| (r.0, r.2)).collect();
         let pmax = computed.iter().fold(0.0f64, |m, p| m.max(p.1.abs()));
         let xmax = computed
@@ -154,9 +179,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             "pressure",
             &series,
         );
-        let f = out_dir.join(format!("{stem}.svg"));
-        write_atomic(&f, svg.as_bytes())?;
-        files.push(f.display().to_string());
+        write_atomic(
+            &dir.file(&format!("{stem}.svg"), &mut files),
+            svg.as_bytes(),
+        )?;
     }
     // Tractions recovered from the nodal stresses on both surfaces, and per-pair figures.
     let mut contact_json = vec![];
@@ -170,8 +196,8 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             "surface,node,x,y,pressure_initial,shear_initial,pressure_deformed,shear_deformed\n",
         );
         for (name, surf) in [("slave", slave), ("master", master)] {
-            let init = surface_tractions(&mesh, surf, &outcome.stress, None);
-            let def = surface_tractions(&mesh, surf, &outcome.stress, Some(&outcome.u));
+            let init = surface_tractions(mesh, surf, &outcome.stress, None);
+            let def = surface_tractions(mesh, surf, &outcome.stress, Some(&outcome.u));
             let mut rows: Vec<_> = init.iter().zip(&def).collect();
             rows.sort_by(|a, b| mesh.coords[a.0 .0][0].total_cmp(&mesh.coords[b.0 .0][0]));
             for (&(n, p, t), &(_, pd, td)) in rows {
@@ -184,9 +210,10 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                 ));
             }
         }
-        let f = out_dir.join(format!("{stem}.csv"));
-        write_atomic(&f, text.as_bytes())?;
-        files.push(f.display().to_string());
+        write_atomic(
+            &dir.file(&format!("{stem}.csv"), &mut files),
+            text.as_bytes(),
+        )?;
         let samples: Vec<(f64, f64)> = outcome.contact_pressure[i]
             .iter()
             .map(|&(n, p)| (mesh.coords[n][0].abs(), p))
@@ -213,7 +240,6 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
             "stick_zone_extent": stick_extent,
         }));
     }
-    let wall = t0.elapsed().as_secs_f64();
     let mut probes = serde_json::Map::new();
     for (name, v) in &outcome.probes {
         probes.insert(name.clone(), json!(v));
@@ -274,39 +300,17 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
                 "reactions": reactions_json(&st.reactions),
             }));
         }
-        let f = out_dir.join("history.csv");
-        write_atomic(&f, text.as_bytes())?;
-        files.push(f.display().to_string());
+        write_atomic(&dir.file("history.csv", &mut files), text.as_bytes())?;
     }
     let results = json!({
-        "case": path.display().to_string(),
-        "title": case.title,
-        "mesh": {"nodes": mesh.num_nodes(), "cells": mesh.num_cells()},
-        "modelisation": case.model.modelisation.name(),
         "probes": probes,
         "reactions": reactions,
         "history": history,
         "contact": contact_json,
         "solver": outcome.report,
         "files": files,
-        "wall_s": wall,
     });
-    let rpath = out_dir.join("results.json");
-    write_atomic(
-        &rpath,
-        serde_json::to_string_pretty(&results).unwrap().as_bytes(),
-    )?;
-    for (name, v) in &outcome.probes {
-        println!("{name:<12} {v:.10e}");
-    }
-    println!(
-        "converged in {} Newton iterations ({} load steps), {:.3} s; results in {}",
-        outcome.report.total_iterations,
-        outcome.report.steps.len(),
-        wall,
-        out_dir.display()
-    );
-    Ok(0)
+    Ok(results)
 }
 
 fn final_state(o: &case::Outcome) -> State<'_> {

@@ -1,27 +1,24 @@
-//! VTK XML unstructured-grid (.vtu) mesh reader, for `tribo mesh convert` from the files
-//! tribo (and most tools) write uncompressed: data arrays inline as ASCII or appended raw
-//! (UInt32 or UInt64 block headers). Base64 and compressed data are clear errors.
+//! VTK XML unstructured-grid (.vtu) mesh reader, for `tribo mesh convert`: data arrays
+//! inline as ASCII or base64 `binary`, or appended raw, with UInt32 or UInt64 block
+//! headers, optionally zlib-compressed (`data.rs`). Connectivity, offsets and types are
+//! read as integers; a negative or out-of-range node index is an error naming the cell.
 //!
 //! Cells: VTK types 1, 3, 21, 5, 22, 9, 23 (vertex, line, quadratic edge, triangle,
 //! quadratic triangle, quad, quadratic quad), whose node orders are ours. Groups: cell
 //! data arrays `group_NAME` (non-zero = member) and point data arrays `nodes_NAME`, as
-//! `post::vtu::write_mesh` writes them. z must be zero.
+//! `post::vtu::write_mesh` writes them (names XML-escaped). z must be zero.
+
+mod data;
 
 use super::{CellKind, Mesh, MeshBuilder};
 use crate::error::{Error, Result};
+use data::{floats, ints, Array, Layout};
 use std::collections::HashMap;
 use std::path::Path;
 
 pub fn read(path: &Path) -> Result<Mesh> {
     let bytes = std::fs::read(path).map_err(|e| Error::io(path, e))?;
     parse(&bytes, &path.display().to_string())
-}
-
-/// One `<DataArray .../>` element: its attributes and, for inline ASCII, its text.
-struct Array {
-    attrs: HashMap<String, String>,
-    text: String,
-    section: &'static str,
 }
 
 fn kind_of(vtk: i64) -> Option<CellKind> {
@@ -37,20 +34,63 @@ fn kind_of(vtk: i64) -> Option<CellKind> {
     })
 }
 
-/// Attributes of the tag starting at `s` (text after the tag name, up to `>`).
+/// Attributes of the tag starting at `s` (text after the tag name, up to `>`), values in
+/// either quotes with their entities decoded.
 fn attributes(s: &str) -> HashMap<String, String> {
     let mut out = HashMap::new();
     let mut rest = s;
     while let Some(eq) = rest.find('=') {
         let key = rest[..eq].trim().to_string();
-        let after = &rest[eq + 1..];
-        let Some(q0) = after.find('"') else { break };
-        let Some(q1) = after[q0 + 1..].find('"') else {
+        let after = rest[eq + 1..].trim_start();
+        let Some(q) = after.chars().next().filter(|c| *c == '"' || *c == '\'') else {
             break;
         };
-        out.insert(key, after[q0 + 1..q0 + 1 + q1].to_string());
-        rest = &after[q0 + q1 + 2..];
+        let Some(end) = after[1..].find(q) else {
+            break;
+        };
+        out.insert(key, unescape(&after[1..1 + end]));
+        rest = &after[end + 2..];
     }
+    out
+}
+
+/// XML text with its entities (&lt; &gt; &amp; &quot; &apos; &#N; &#xN;) decoded; an
+/// unknown one is kept as written.
+fn unescape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    let mut rest = s;
+    while let Some(amp) = rest.find('&') {
+        out.push_str(&rest[..amp]);
+        rest = &rest[amp..];
+        let decoded = rest.find(';').and_then(|semi| {
+            let c = match &rest[1..semi] {
+                "lt" => '<',
+                "gt" => '>',
+                "amp" => '&',
+                "quot" => '"',
+                "apos" => '\'',
+                e => {
+                    let n = match e.strip_prefix("#x").or_else(|| e.strip_prefix("#X")) {
+                        Some(h) => u32::from_str_radix(h, 16).ok()?,
+                        None => e.strip_prefix('#')?.parse().ok()?,
+                    };
+                    char::from_u32(n)?
+                }
+            };
+            Some((c, semi + 1))
+        });
+        match decoded {
+            Some((c, len)) => {
+                out.push(c);
+                rest = &rest[len..];
+            }
+            None => {
+                out.push('&');
+                rest = &rest[1..];
+            }
+        }
+    }
+    out.push_str(rest);
     out
 }
 
@@ -95,9 +135,15 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
             head.get("type").cloned().unwrap_or_default()
         )));
     }
-    if head.contains_key("compressor") {
-        return Err(err("compressed VTU files are not supported".into()));
-    }
+    let zlib = match head.get("compressor").map(String::as_str) {
+        None | Some("") => false,
+        Some("vtkZLibDataCompressor") => true,
+        Some(other) => {
+            return Err(err(format!(
+                "compressor '{other}' is not supported (only vtkZLibDataCompressor)"
+            )))
+        }
+    };
     if head.get("byte_order").is_some_and(|b| b != "LittleEndian") {
         return Err(err("big-endian VTU files are not supported".into()));
     }
@@ -156,59 +202,13 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
             _ => {}
         }
     }
-    let values = |a: &Array, expected: usize| -> Result<Vec<f64>> {
-        let name = a
-            .attrs
-            .get("Name")
-            .cloned()
-            .unwrap_or_else(|| a.section.to_string());
-        let ty = a.attrs.get("type").cloned().unwrap_or_default();
-        let v = match a.attrs.get("format").map(String::as_str) {
-            Some("ascii") => a
-                .text
-                .split_ascii_whitespace()
-                .map(|t| t.parse::<f64>())
-                .collect::<std::result::Result<Vec<f64>, _>>()
-                .map_err(|_| err(format!("array '{name}': a value is not a number")))?,
-            Some("appended") => {
-                let off: usize = a
-                    .attrs
-                    .get("offset")
-                    .and_then(|o| o.parse().ok())
-                    .ok_or_else(|| err(format!("array '{name}': no valid offset")))?;
-                let hl = if header64 { 8 } else { 4 };
-                let block = raw
-                    .get(off..off + hl)
-                    .ok_or_else(|| err(format!("array '{name}': offset {off} beyond the data")))?;
-                let len = if header64 {
-                    u64::from_le_bytes(block.try_into().unwrap()) as usize
-                } else {
-                    u32::from_le_bytes(block.try_into().unwrap()) as usize
-                };
-                let data = raw
-                    .get(off + hl..(off + hl).saturating_add(len))
-                    .ok_or_else(|| err(format!("array '{name}': truncated data")))?;
-                decode(data, &ty).ok_or_else(|| {
-                    err(format!(
-                        "array '{name}': type '{ty}' with {len} bytes is not readable"
-                    ))
-                })?
-            }
-            other => {
-                return Err(err(format!(
-                    "array '{name}': format '{}' is not supported (ascii or appended raw)",
-                    other.unwrap_or("binary")
-                )))
-            }
-        };
-        if v.len() != expected {
-            return Err(err(format!(
-                "array '{name}': {} values, expected {expected}",
-                v.len()
-            )));
-        }
-        Ok(v)
+    let layout = Layout {
+        header64,
+        zlib,
+        appended: raw,
     };
+    let values = |a: &Array, n: usize| floats(a, &layout, n).map_err(&err);
+    let integers = |a: &Array, n: usize| ints(a, &layout, n).map_err(&err);
     let find_array = |section: &str, name: Option<&str>| {
         arrays.iter().find(|a| {
             a.section == section && name.is_none_or(|n| a.attrs.get("Name").is_some_and(|x| x == n))
@@ -235,38 +235,45 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
         }
         b.add_node([p[0], p[1]]);
     }
-    let get = |name: &str, n: usize| -> Result<Vec<f64>> {
-        let a = find_array("Cells", Some(name))
-            .ok_or_else(|| err(format!("no '{name}' array in <Cells>")))?;
-        values(a, n)
+    let cells = |name: &str| {
+        find_array("Cells", Some(name)).ok_or_else(|| err(format!("no '{name}' array in <Cells>")))
     };
-    let types = get("types", nc)?;
-    let offsets = get("offsets", nc)?;
-    let total = offsets.last().copied().unwrap_or(0.0) as usize;
-    let conn = get("connectivity", total)?;
+    let types = integers(cells("types")?, nc)?;
+    let offsets = integers(cells("offsets")?, nc)?;
+    let total = offsets.last().copied().unwrap_or(0);
+    let total = usize::try_from(total)
+        .map_err(|_| err(format!("cell {nc}: offset {total} is negative")))?;
+    let conn = integers(cells("connectivity")?, total)?;
     let mut start = 0usize;
     for c in 0..nc {
-        let end = offsets[c] as usize;
-        let kind = kind_of(types[c] as i64).ok_or_else(|| {
+        let kind = kind_of(types[c]).ok_or_else(|| {
             err(format!(
                 "cell {}: VTK cell type {} is not supported (1, 3, 21, 5, 22, 9, 23)",
                 c + 1,
                 types[c]
             ))
         })?;
-        if end < start || end > conn.len() || end - start != kind.num_nodes() {
-            return Err(err(format!(
-                "cell {}: offsets give {} nodes for a {kind}",
-                c + 1,
-                end.saturating_sub(start)
-            )));
-        }
-        let nodes: Vec<usize> = conn[start..end].iter().map(|&v| v as usize).collect();
-        if nodes.iter().any(|&n| n >= np) {
-            return Err(err(format!(
-                "cell {}: node index beyond the {np} points",
-                c + 1
-            )));
+        let end = usize::try_from(offsets[c])
+            .ok()
+            .filter(|&e| e >= start && e <= conn.len() && e - start == kind.num_nodes())
+            .ok_or_else(|| {
+                err(format!(
+                    "cell {}: offsets give {} nodes for a {kind} (offset {} after {start})",
+                    c + 1,
+                    offsets[c].saturating_sub(start as i64),
+                    offsets[c]
+                ))
+            })?;
+        let mut nodes = Vec::with_capacity(end - start);
+        for &v in &conn[start..end] {
+            let n = usize::try_from(v).ok().filter(|&n| n < np).ok_or_else(|| {
+                err(format!(
+                    "cell {}: node index {v} is not one of the {np} points (0 to {})",
+                    c + 1,
+                    np as i64 - 1
+                ))
+            })?;
+            nodes.push(n);
         }
         b.add_cell(kind, &nodes, c as u64 + 1);
         start = end;
@@ -294,32 +301,4 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
 
 fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
     hay.windows(needle.len()).position(|w| w == needle)
-}
-
-/// Little-endian values of a VTK scalar type, as f64 (exact for the integer sizes used).
-fn decode(data: &[u8], ty: &str) -> Option<Vec<f64>> {
-    macro_rules! read {
-        ($t:ty) => {{
-            let n = std::mem::size_of::<$t>();
-            if data.len() % n != 0 {
-                return None;
-            }
-            data.chunks(n)
-                .map(|c| <$t>::from_le_bytes(c.try_into().unwrap()) as f64)
-                .collect()
-        }};
-    }
-    Some(match ty {
-        "Float64" => read!(f64),
-        "Float32" => read!(f32),
-        "Int64" => read!(i64),
-        "UInt64" => read!(u64),
-        "Int32" => read!(i32),
-        "UInt32" => read!(u32),
-        "Int16" => read!(i16),
-        "UInt16" => read!(u16),
-        "Int8" => read!(i8),
-        "UInt8" => read!(u8),
-        _ => return None,
-    })
 }

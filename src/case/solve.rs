@@ -1,0 +1,332 @@
+//! Running a case: the solve, then the fields of each converged output step and of the
+//! final state. A solve that fails after some converged steps still hands back what they
+//! gave (`Failure::partial`), so that a caller can keep the results it has.
+
+use super::schema::CaseFile;
+use super::{build_pairs, build_problem, loading, probe, probe_nodes};
+use crate::contact::problem::ContactProblem;
+use crate::contact::surface::Surface;
+use crate::error::{Error, Result};
+use crate::mesh::Mesh;
+use crate::post::stress::{cell_node_stresses, nodal_stresses};
+use crate::solver::linear::Method;
+use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
+use crate::solver::problem::SolidProblem;
+
+/// What a run produces.
+pub struct Outcome {
+    pub report: NewtonReport,
+    /// The state after each converged load step (when the case writes VTU files).
+    pub steps: Vec<StepOutcome>,
+    /// Per contact pair: (slave node, pressure) from the multipliers.
+    pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
+    pub contact_multipliers: Vec<Multipliers>,
+    /// Per contact pair: (slave, master) surfaces.
+    pub contact_surfaces: Vec<(Surface, Surface)>,
+    /// Per contact pair: (slave node, tangential traction) with friction, and μ.
+    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+    pub u: Vec<f64>,
+    pub reactions: Vec<f64>,
+    /// Nodal stresses averaged over all cells sharing a node.
+    pub stress: Vec<[f64; 4]>,
+    pub probes: Vec<(String, f64)>,
+}
+
+/// The fields of one converged load step.
+pub struct StepOutcome {
+    pub time: f64,
+    pub probes: Vec<(String, f64)>,
+    pub u: Vec<f64>,
+    pub reactions: Vec<f64>,
+    pub stress: Vec<[f64; 4]>,
+    pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+    pub contact_multipliers: Vec<Multipliers>,
+}
+
+/// (slave node, [normal, tangential] multiplier) of one contact pair.
+pub type Multipliers = Vec<(usize, [f64; 2])>;
+
+fn step_outcome(
+    case: &CaseFile,
+    mesh: &Mesh,
+    solid: &SolidProblem,
+    time: f64,
+    contact_pressure: Vec<Vec<(usize, f64)>>,
+    contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+) -> Result<StepOutcome> {
+    let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
+    let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
+    let mut probes = vec![];
+    for p in &case.output.probe {
+        probes.push((p.name.clone(), probe(solid, p, &elno, &stress)?));
+    }
+    Ok(StepOutcome {
+        time,
+        probes,
+        u: solid.u.clone(),
+        reactions: solid.reactions(),
+        stress,
+        contact_pressure,
+        contact_shear,
+        contact_multipliers: vec![],
+    })
+}
+
+/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers, and the raw
+/// multipliers.
+#[allow(clippy::type_complexity)]
+fn contact_tractions(
+    cp: &ContactProblem,
+) -> Result<(
+    Vec<Vec<(usize, f64)>>,
+    Vec<(f64, Vec<(usize, f64)>)>,
+    Vec<Multipliers>,
+)> {
+    let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
+    for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
+        let lam = &cp.lam[b..b + p.num_multipliers()];
+        pressures.push(p.nodal_pressures(lam));
+        shear.push((p.friction(), p.nodal_shear(lam)));
+        multipliers.push(p.nodal_multipliers(lam));
+    }
+    // never a non-finite value in an output
+    for (i, (p, s)) in pressures.iter().zip(&shear).enumerate() {
+        if let Some(&(n, v)) = p.iter().chain(&s.1).find(|(_, v)| !v.is_finite()) {
+            return Err(Error::Solve(format!(
+                "[[contact]] {}: the contact traction at node {} is {v} (a degenerate \
+                 contact there: a node with no share of the surface?)",
+                i + 1,
+                n + 1
+            )));
+        }
+    }
+    Ok((pressures, shear, multipliers))
+}
+
+/// A run that failed: why, and once the solve had begun, its report, the time of the step
+/// that failed, and the outcome of the last converged state (None before any converged).
+pub struct Failure {
+    pub error: Error,
+    pub report: Option<Box<NewtonReport>>,
+    pub time: Option<f64>,
+    pub partial: Option<Box<Outcome>>,
+}
+
+impl From<Error> for Failure {
+    /// A failure before the solve: nothing to keep.
+    fn from(error: Error) -> Self {
+        Failure {
+            error,
+            report: None,
+            time: None,
+            partial: None,
+        }
+    }
+}
+
+/// The converged states at output times, and the final state (last, so that evaluating
+/// them in order leaves the problem in its final state), each with whether it is an output.
+fn output_states(
+    mut states: Vec<(f64, Vec<f64>)>,
+    is_output: impl Fn(f64) -> bool,
+) -> Vec<(f64, Vec<f64>, bool)> {
+    let last = states.pop();
+    let mut out: Vec<(f64, Vec<f64>, bool)> = states
+        .into_iter()
+        .filter(|s| is_output(s.0))
+        .map(|(t, x)| (t, x, true))
+        .collect();
+    if let Some((t, x)) = last {
+        out.push((t, x, is_output(t)));
+    }
+    out
+}
+
+/// Solves a case on a mesh.
+pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
+    run_keeping(case, mesh, verbose).map_err(|f| f.error)
+}
+
+/// `run` whose failure keeps the converged steps (see `Failure`).
+pub fn run_keeping(
+    case: &CaseFile,
+    mesh: &Mesh,
+    verbose: bool,
+) -> std::result::Result<Outcome, Failure> {
+    let mut problem = build_problem(case, mesh)?;
+    // Probes are checked before the (possibly long) solve.
+    for c in &case.output.curve {
+        crate::post::curve::chain(mesh, &c.group)
+            .map_err(|e| Error::model(format!("[[output.curve]] '{}': {e}", c.name)))?;
+    }
+    for p in &case.output.probe {
+        probe_nodes(mesh, p)?;
+        if let Some(g) = &p.stress_group {
+            mesh.cell_group(g)
+                .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
+        }
+    }
+    let (times, output_times) = loading::schedule(case, &problem.loading)?;
+    let settings = NewtonSettings {
+        steps: case.solver.steps.max(1),
+        times,
+        tolerance: case.solver.tolerance,
+        max_iterations: case.solver.max_iterations,
+        verbose,
+        keep_states: case.output.history,
+        ..Default::default()
+    };
+    let end = *settings.times.last().unwrap_or(&1.0);
+    // the converged states that are output times (all of them by default)
+    let is_output = |t: f64| {
+        output_times
+            .as_ref()
+            .is_none_or(|o| o.iter().any(|&x| (x - t).abs() <= 1e-9 * end))
+    };
+    let mut report = NewtonReport::default();
+    if case.contact.is_empty() {
+        let solved = newton::solve_into(&mut problem, &settings, Method::Cholesky, &mut report);
+        let states = output_states(std::mem::take(&mut report.states), is_output);
+        let kept = (solved.is_ok() || !states.is_empty())
+            .then(|| without_contact(case, mesh, &mut problem, &states, settings.keep_states));
+        finish(solved, kept, report)
+    } else {
+        let pairs = build_pairs(case, mesh)?;
+        let mut cp = ContactProblem::new(problem, pairs);
+        // Contact tangents are saddle-point matrices, non-symmetric with friction and mortar
+        // geometry terms: condensed on the contact interface (exact), or for a large
+        // interface LDLᵀ of a symmetric approximation with GMRES on the exact matrix (LU if
+        // that fails).
+        let solved = newton::solve_into(&mut cp, &settings, Method::SaddleLdlt, &mut report);
+        let states = output_states(std::mem::take(&mut report.states), is_output);
+        let kept = (solved.is_ok() || !states.is_empty())
+            .then(|| with_contact(case, mesh, &mut cp, &states, settings.keep_states));
+        finish(solved, kept, report)
+    }
+}
+
+/// The outcome of a solve (`solved`) from the fields of its last converged state (`kept`,
+/// None when no step converged).
+fn finish(
+    solved: Result<()>,
+    kept: Option<Result<Outcome>>,
+    report: NewtonReport,
+) -> std::result::Result<Outcome, Failure> {
+    let time = report.steps.last().filter(|s| !s.converged).map(|s| s.time);
+    match (solved, kept.transpose()) {
+        (Ok(()), Ok(Some(mut o))) => {
+            o.report = report;
+            Ok(o)
+        }
+        (Ok(()), Ok(None)) => Err(Failure {
+            error: Error::solve("the solve ended without a converged state"),
+            report: Some(Box::new(report)),
+            time,
+            partial: None,
+        }),
+        (Ok(()), Err(error)) => Err(Failure {
+            error,
+            report: Some(Box::new(report)),
+            time,
+            partial: None,
+        }),
+        (Err(error), kept) => {
+            // an error in the outputs of the kept states leaves the solve's error as the cause
+            let partial = kept.ok().flatten().map(|mut o| {
+                o.report = report.clone();
+                Box::new(o)
+            });
+            Err(Failure {
+                error,
+                report: Some(Box::new(report)),
+                time,
+                partial,
+            })
+        }
+    }
+}
+
+/// The outcome of a problem without contact: its output states evaluated in order (the
+/// problem is left in the last one), the output steps among them when `keep`.
+fn without_contact(
+    case: &CaseFile,
+    mesh: &Mesh,
+    problem: &mut SolidProblem,
+    states: &[(f64, Vec<f64>, bool)],
+    keep: bool,
+) -> Result<Outcome> {
+    let mut steps = vec![];
+    let mut r = vec![0.0; problem.num_unknowns()];
+    for (lf, x, output) in states {
+        problem.evaluate(x, *lf, &mut r, false)?;
+        if *output && keep {
+            steps.push(step_outcome(case, mesh, problem, *lf, vec![], vec![])?);
+        }
+    }
+    final_outcome(case, mesh, problem, steps)
+}
+
+/// `without_contact` with contact: the pressures, shear and multipliers of each state too.
+fn with_contact(
+    case: &CaseFile,
+    mesh: &Mesh,
+    cp: &mut ContactProblem,
+    states: &[(f64, Vec<f64>, bool)],
+    keep: bool,
+) -> Result<Outcome> {
+    let mut steps = vec![];
+    let mut r = vec![0.0; cp.num_unknowns()];
+    for (lf, x, output) in states {
+        cp.evaluate(x, *lf, &mut r, false)?;
+        if !(*output && keep) {
+            continue;
+        }
+        let (p, sh, m) = contact_tractions(cp)?;
+        let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
+        step.contact_multipliers = m;
+        steps.push(step);
+    }
+    let (pressures, shear, multipliers) = contact_tractions(cp)?;
+    let mut o = final_outcome(case, mesh, &cp.solid, steps)?;
+    o.contact_surfaces = cp
+        .pairs
+        .iter()
+        .map(|p| {
+            let (s, m) = p.surfaces();
+            (s.clone(), m.clone())
+        })
+        .collect();
+    o.contact_pressure = pressures;
+    o.contact_shear = shear;
+    o.contact_multipliers = multipliers;
+    Ok(o)
+}
+
+/// The outcome of the problem's current state (no contact fields, an empty report).
+fn final_outcome(
+    case: &CaseFile,
+    mesh: &Mesh,
+    problem: &SolidProblem,
+    steps: Vec<StepOutcome>,
+) -> Result<Outcome> {
+    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
+    let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
+    let mut probes = vec![];
+    for p in &case.output.probe {
+        probes.push((p.name.clone(), probe(problem, p, &elno, &stress)?));
+    }
+    Ok(Outcome {
+        report: NewtonReport::default(),
+        steps,
+        contact_pressure: vec![],
+        contact_multipliers: vec![],
+        contact_surfaces: vec![],
+        contact_shear: vec![],
+        reactions: problem.reactions(),
+        u: problem.u.clone(),
+        stress,
+        probes,
+    })
+}
