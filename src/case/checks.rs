@@ -112,7 +112,8 @@ pub(super) fn check_functions_used(case: &CaseFile) -> Result<()> {
         if !used.contains(&&f.name) {
             return Err(Error::model(format!(
                 "[[function]] {} ('{}') is used by no load, imposed motion or relation: name \
-                 it in a function key, or remove it",
+                 it in a function key, or remove it (to set the end of the history, give \
+                 [solver] end_time)",
                 i + 1,
                 f.name
             )));
@@ -311,14 +312,14 @@ fn check_solver_and_output(case: &CaseFile) -> Result<()> {
         }
     }
     if let Some(h) = &o.hertz {
+        positive(h.a, "[output] hertz", "a")?;
+        positive(h.p0, "[output] hertz", "p0")?;
         if case.contact.is_empty() {
             return Err(Error::model(
                 "[output] hertz does nothing without a [[contact]] (it plots the contact \
                  pressure against Hertz's)",
             ));
         }
-        positive(h.a, "[output] hertz", "a")?;
-        positive(h.p0, "[output] hertz", "p0")?;
     }
     for (i, p) in o.probe.iter().enumerate() {
         let what = format!("[[output.probe]] {}", i + 1);

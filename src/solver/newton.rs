@@ -222,6 +222,9 @@ pub fn solve(
     let mut next = 0;
     let mut level = 0u32;
     let mut cuts = 0;
+    // the last state defect that cut a step: the root cause when smaller steps then fail
+    // otherwise (a body pushed through another, then a singular system)
+    let mut last_defect: Option<String> = None;
     let backtracking = problem.backtracking();
     let meets_tolerance = |n: &Norms| {
         n.relative() <= settings.tolerance
@@ -438,6 +441,7 @@ pub fn solve(
                         && norms.constraint <= settings.tolerance))
             {
                 if let Some(defect) = problem.state_defect() {
+                    last_defect = Some(defect.clone());
                     failure = Some(defect);
                     break;
                 }
@@ -562,8 +566,12 @@ pub fn solve(
         }
         let why = failure.unwrap_or_default();
         if cuts >= settings.max_cuts {
+            let earlier = match &last_defect {
+                Some(d) if *d != why => format!(" (an earlier attempt: {d})"),
+                _ => String::new(),
+            };
             return Err(Error::solve(format!(
-                "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}"
+                "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}{earlier}"
             )));
         }
         if settings.verbose {

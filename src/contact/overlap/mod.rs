@@ -276,7 +276,7 @@ impl OverlapCheck {
     pub fn during_step(&self, mesh: &Mesh, u0: &[f64], u1: &[f64]) -> Option<String> {
         let (side, count, f) = self.worst(mesh, u0, u1)?;
         let when = if f.s < 1.0 {
-            format!(" on the way ({:.0} % into the step)", 100.0 * f.s)
+            format!(" on the way (at {:.2e} of the step)", f.s)
         } else {
             String::new()
         };
