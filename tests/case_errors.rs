@@ -251,7 +251,8 @@ fn bad_load_histories_name_the_entry() {
         "out_time.toml",
         &with(
             "[[function]]\nname = \"f\"\ntable = [[0, 0], [2, 1]]\n[output]\ntimes = [1.0, 2.5]\n",
-        ),
+        )
+        .replace("fy = -1.0", "fy = -1.0\nfunction = \"f\""),
     );
     assert!(
         e.starts_with("[output] times: 2.5 is outside the history (0, 2]"),

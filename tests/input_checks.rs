@@ -208,3 +208,59 @@ fn a_closed_or_full_stdout_ends_quietly_with_a_non_zero_status() {
         assert_eq!(out.status.code(), Some(3));
     }
 }
+
+#[test]
+fn entries_that_say_nothing_or_contradict_another_are_refused() {
+    expect(
+        "force_none.toml",
+        "[[force]]\ngroup = \"Right\"\n",
+        "[[force]] 2 on 'Right' imposes nothing: give fx, fy or both",
+    );
+    expect(
+        "traction_none.toml",
+        "[[traction]]\ngroup = \"Right\"\n",
+        "[[traction]] 1 on 'Right' imposes nothing: give tx, ty or both",
+    );
+    expect(
+        "fn_unused.toml",
+        "[[function]]\nname = \"f\"\ntable = [[0, 0], [1, 1]]\n",
+        "[[function]] 1 ('f') is used by no load",
+    );
+    expect(
+        "hertz_alone.toml",
+        "[output]\nhertz = { a = 1.0, p0 = 1.0 }\n",
+        "[output] hertz does nothing without a [[contact]]",
+    );
+    expect(
+        "probe_group_stress_group.toml",
+        "[[output.probe]]\nname = \"p\"\ngroup = \"TopRight\"\nfield = \"dx\"\nstress_group = \"Body\"\n",
+        "stress_group does nothing on a displacement probe (field = dx)",
+    );
+    // dy(TopRight) − dy(TopRight) = 0 is no equation; with 1.5 and −1.5 + 0 dx neither
+    expect(
+        "rel_cancel.toml",
+        "[[relation]]\nterms = [{ group = \"TopRight\", dof = \"dy\", coef = 1.5 }, \
+         { group = \"TopRight\", dof = \"dy\", coef = -1.5 }]\n",
+        "[[relation]] 'relation 1': its terms cancel",
+    );
+    expect(
+        "rotations.toml",
+        "[[rotation]]\ngroup = \"Right\"\ncenter = [0.0, 0.0]\nangle = 1.0\n\
+         [[rotation]]\ngroup = \"BottomRight\"\ncenter = [0.0, 0.0]\nangle = 2.0\n",
+        "[[rotation]] on 'BottomRight' (angle 2): node 13 is also moved by [[rotation]] 1 on 'Right'",
+    );
+    expect(
+        "probe_far.toml",
+        "[[output.probe]]\nname = \"p\"\nat = [1e300, 0.0]\nfield = \"dy\"\n",
+        "at = [1e300, 0e0] is more than 1e6 times the mesh size",
+    );
+    let axisym = GOOD.replace(
+        "group = \"TopRight\"\nfy",
+        "group = \"TopLeft\"\nfx = 1.0\nfy",
+    ) + "[model]\nmodelisation = \"axisymmetric\"\n";
+    let e = error_of("axis_force.toml", &axisym);
+    assert!(
+        e.contains("[[force]] on 'TopLeft': node 3 is on the axis (r = 0)"),
+        "{e}"
+    );
+}

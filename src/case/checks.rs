@@ -71,6 +71,57 @@ fn safe_name(name: &str, what: &str) -> Result<()> {
     }
 }
 
+/// The two components of a load: at least one given, each finite.
+fn components(what: &str, given: [(&str, Option<f64>); 2]) -> Result<()> {
+    if given.iter().all(|(_, v)| v.is_none()) {
+        return Err(Error::model(format!(
+            "{what} imposes nothing: give {}, {} or both",
+            given[0].0, given[1].0
+        )));
+    }
+    for (k, v) in given {
+        if let Some(v) = v {
+            finite(v, what, k)?;
+        }
+    }
+    Ok(())
+}
+
+/// Every [[function]] scales some load, imposed motion or relation (one that scales
+/// nothing is a typo in a `function` key, or left over). Checked after the functions and
+/// the loads' references to them.
+pub(super) fn check_functions_used(case: &CaseFile) -> Result<()> {
+    let used: Vec<&String> = case
+        .displacement
+        .iter()
+        .filter_map(|d| d.function.as_ref())
+        .chain(case.rotation.iter().filter_map(|r| r.function.as_ref()))
+        .chain(case.force.iter().filter_map(|f| f.function.as_ref()))
+        .chain(case.pressure.iter().filter_map(|p| p.function.as_ref()))
+        .chain(case.traction.iter().filter_map(|t| t.function.as_ref()))
+        .chain(case.relation.iter().filter_map(|r| r.function.as_ref()))
+        .collect();
+    // (a name with no [[function]] is reported where the loads are built)
+    if used
+        .iter()
+        .any(|u| case.function.iter().all(|f| &&f.name != u))
+    {
+        return Ok(());
+    }
+    for (i, f) in case.function.iter().enumerate() {
+        if !used.contains(&&f.name) {
+            return Err(Error::model(format!(
+                "[[function]] {} ('{}') is used by no load, imposed motion or relation: name \
+                 it in a function key, or remove it (to set the end of the history, give \
+                 [solver] end_time)",
+                i + 1,
+                f.name
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The checks of a case that need no mesh.
 pub fn check(case: &CaseFile) -> Result<()> {
     check_mesh_spec(&case.mesh)?;
@@ -118,8 +169,7 @@ pub fn check(case: &CaseFile) -> Result<()> {
     }
     for (i, f) in case.force.iter().enumerate() {
         let what = format!("[[force]] {} on '{}'", i + 1, f.group);
-        finite(f.fx, &what, "fx")?;
-        finite(f.fy, &what, "fy")?;
+        components(&what, [("fx", f.fx), ("fy", f.fy)])?;
     }
     for (i, p) in case.pressure.iter().enumerate() {
         finite(
@@ -130,8 +180,7 @@ pub fn check(case: &CaseFile) -> Result<()> {
     }
     for (i, t) in case.traction.iter().enumerate() {
         let what = format!("[[traction]] {} on '{}'", i + 1, t.group);
-        finite(t.tx, &what, "tx")?;
-        finite(t.ty, &what, "ty")?;
+        components(&what, [("tx", t.tx), ("ty", t.ty)])?;
     }
     for (i, r) in case.relation.iter().enumerate() {
         let what = format!("[[relation]] {} ('{}')", i + 1, r.name);
@@ -265,6 +314,12 @@ fn check_solver_and_output(case: &CaseFile) -> Result<()> {
     if let Some(h) = &o.hertz {
         positive(h.a, "[output] hertz", "a")?;
         positive(h.p0, "[output] hertz", "p0")?;
+        if case.contact.is_empty() {
+            return Err(Error::model(
+                "[output] hertz does nothing without a [[contact]] (it plots the contact \
+                 pressure against Hertz's)",
+            ));
+        }
     }
     for (i, p) in o.probe.iter().enumerate() {
         let what = format!("[[output.probe]] {}", i + 1);
@@ -286,6 +341,14 @@ fn check_solver_and_output(case: &CaseFile) -> Result<()> {
         if let Some(a) = p.at {
             finite(a[0], &what, "at")?;
             finite(a[1], &what, "at")?;
+        }
+        // with `at`, stress_group also picks the cells whose nodes are searched
+        if p.stress_group.is_some() && p.at.is_none() && matches!(p.field.as_str(), "dx" | "dy") {
+            return Err(Error::model(format!(
+                "{what}: stress_group does nothing on a displacement probe (field = {}) over \
+                 a group: it selects the cells whose stresses are averaged",
+                p.field
+            )));
         }
     }
     for (i, c) in o.curve.iter().enumerate() {

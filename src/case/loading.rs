@@ -107,7 +107,9 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
     for &(d, _) in &fixed {
         by_displacement[d] = true;
     }
-    for spec in &case.rotation {
+    // the [[rotation]] that moves each node: a node moved twice must be moved alike
+    let mut rotated: std::collections::HashMap<usize, usize> = std::collections::HashMap::new();
+    for (i, spec) in case.rotation.iter().enumerate() {
         let what = format!("[[rotation]] on '{}'", spec.group);
         let function = lookup(&funcs, &spec.function, &what)?;
         let nodes = mesh
@@ -129,6 +131,31 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
                 "{what}: node {} also has a [[displacement]]; a node's motion is imposed once",
                 n + 1
             )));
+        }
+        for &n in &nodes {
+            let Some(&j) = rotated.get(&n) else {
+                rotated.insert(n, i);
+                continue;
+            };
+            let other = &case.rotation[j];
+            let same = (
+                other.center,
+                other.angle,
+                other.dx,
+                other.dy,
+                &other.function,
+            ) == (spec.center, spec.angle, spec.dx, spec.dy, &spec.function);
+            if !same {
+                return Err(Error::model(format!(
+                    "{what} (angle {}): node {} is also moved by [[rotation]] {} on '{}' \
+                     (angle {}) differently; a node's motion is imposed once",
+                    spec.angle,
+                    n + 1,
+                    j + 1,
+                    other.group,
+                    other.angle
+                )));
+            }
         }
         let entry = Imposed::Rigid {
             nodes: nodes.iter().map(|&n| (n, mesh.coords[n])).collect(),
@@ -152,13 +179,29 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
     }
     // One force vector per distinct time function.
     let mut forces: Vec<(Vec<f64>, TimeFunction)> = vec![];
+    let (lo, hi) = crate::mesh::quality::bounding_box(mesh);
+    let on_axis_tol = 1e-9 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
     for spec in &case.force {
         let what = format!("[[force]] on '{}'", spec.group);
         let f = slot(&mut forces, lookup(&funcs, &spec.function, &what)?, ndof);
         let nodes = mesh
             .node_group(&spec.group)
             .map_err(|e| Error::model(format!("[[force]]: {e}")))?;
-        add_nodal_force(f, &nodes, [spec.fx, spec.fy]);
+        // a node on the axis is a point of the axis: it has no radial direction
+        let radial = spec.fx.is_some_and(|fx| fx != 0.0);
+        if m.modelisation == crate::fem::material::Modelisation::Axisymmetric && radial {
+            if let Some(&n) = nodes
+                .iter()
+                .find(|&&n| mesh.coords[n][0].abs() <= on_axis_tol)
+            {
+                return Err(Error::model(format!(
+                    "{what}: node {} is on the axis (r = 0) of the axisymmetric model, where a \
+                     radial force fx means nothing (the axis does not move radially)",
+                    n + 1
+                )));
+            }
+        }
+        add_nodal_force(f, &nodes, [spec.fx.unwrap_or(0.0), spec.fy.unwrap_or(0.0)]);
     }
     for spec in &case.pressure {
         let what = format!("[[pressure]] on '{}'", spec.group);
@@ -170,7 +213,7 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
     for spec in &case.traction {
         let what = format!("[[traction]] on '{}'", spec.group);
         let f = slot(&mut forces, lookup(&funcs, &spec.function, &what)?, ndof);
-        let load = EdgeLoad::Traction([spec.tx, spec.ty]);
+        let load = EdgeLoad::Traction([spec.tx.unwrap_or(0.0), spec.ty.unwrap_or(0.0)]);
         add_edge_load(mesh, &spec.group, load, m.modelisation, m.thickness, f)
             .map_err(|e| Error::model(format!("[[traction]]: {e}")))?;
     }
@@ -179,6 +222,7 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<(Vec<(usize, f64)>, Loading
         let what = format!("[[relation]] {}", i + 1);
         relation_functions.push(lookup(&funcs, &r.function, &what)?);
     }
+    super::checks::check_functions_used(case)?;
     Ok((
         fixed,
         Loading {

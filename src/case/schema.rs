@@ -182,11 +182,11 @@ pub struct RotationSpec {
 #[serde(deny_unknown_fields)]
 pub struct ForceSpec {
     pub group: String,
-    /// Force applied at each node of the group.
+    /// Force applied at each node of the group (at least one component).
     #[serde(default)]
-    pub fx: f64,
+    pub fx: Option<f64>,
     #[serde(default)]
-    pub fy: f64,
+    pub fy: Option<f64>,
     pub function: Option<String>,
 }
 
@@ -203,9 +203,9 @@ pub struct PressureSpec {
 pub struct TractionSpec {
     pub group: String,
     #[serde(default)]
-    pub tx: f64,
+    pub tx: Option<f64>,
     #[serde(default)]
-    pub ty: f64,
+    pub ty: Option<f64>,
     pub function: Option<String>,
 }
 
@@ -356,9 +356,10 @@ pub struct ContactSpec {
     /// (h the shortest slave cell), 100 on SSNP154's scale.
     #[serde(default)]
     pub rho: Option<f64>,
-    /// Initial status: "all" points active, or the "closed" ones (gap <= 0).
-    #[serde(default = "default_initial")]
-    pub initial: String,
+    /// Initial status: "all" points active, or the "closed" ones (gap <= 0); default
+    /// "all" (point-to-segment, node-to-segment) or the touching nodes (mortar).
+    #[serde(default)]
+    pub initial: Option<String>,
     /// With initial = "closed": open gaps up to this distance count as closed at the start.
     #[serde(default)]
     pub initial_gap: Option<f64>,
@@ -392,7 +393,4 @@ fn default_integration() -> String {
 }
 fn three() -> usize {
     3
-}
-fn default_initial() -> String {
-    "all".into()
 }

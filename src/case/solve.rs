@@ -195,6 +195,9 @@ pub fn run_keeping(
     } else {
         let pairs = build_pairs(case, mesh)?;
         let mut cp = ContactProblem::new(problem, pairs);
+        if let Some(e) = cp.initial_overlap() {
+            return Err(Error::model(e).into());
+        }
         // Contact tangents are saddle-point matrices, non-symmetric with friction and mortar
         // geometry terms: condensed on the contact interface (exact), or for a large
         // interface LDLᵀ of a symmetric approximation with GMRES on the exact matrix (LU if

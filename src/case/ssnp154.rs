@@ -61,8 +61,8 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         ],
         force: vec![ForceSpec {
             group: "Force".into(),
-            fx: 0.0,
-            fy: -17500.0,
+            fx: None,
+            fy: Some(-17500.0),
             function: None,
         }],
         pressure: vec![],
@@ -210,7 +210,7 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         gauss_points: 3,
         // the reference's augmentation (mortar has none)
         rho: (formulation != "mortar").then_some(100.0),
-        initial: "closed".into(),
+        initial: Some("closed".into()),
         initial_gap: Some(0.1),
         adjust: None,
         friction: 0.0,

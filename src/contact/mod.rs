@@ -10,11 +10,13 @@
 //! | `pair.rs` | the `ContactPair` interface of the formulations |
 //! | `mortar/` | dual mortar, nodal weighted gaps and active set |
 //! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
+//! | `overlap/` | the physical check: no contact node deep inside the other body |
 //! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 
 pub mod axis;
 pub mod friction;
 pub mod mortar;
+pub mod overlap;
 pub mod pair;
 pub mod point_segment;
 pub mod problem;

@@ -71,6 +71,11 @@ pub trait ContactPair {
     fn active_set_resolves(&self) -> bool {
         true
     }
+    /// How far the bodies may overlap besides what the formulation's penetration allows
+    /// (a distance: mortar's adjust keeps initial overlaps up to it).
+    fn overlap_allowance(&self) -> f64 {
+        0.0
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

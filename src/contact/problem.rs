@@ -2,6 +2,7 @@
 //! followed by the multipliers of every pair; the matrix is the solid one plus the contact
 //! blocks (symmetric indefinite: solved with LU).
 
+use super::overlap::OverlapCheck;
 use super::pair::ContactPair;
 use crate::assembly::coupled::{CoupledMatrix, Triplets};
 use crate::assembly::matrix::SparseMatrix;
@@ -20,6 +21,11 @@ pub struct ContactProblem<'m> {
     triplets: Triplets,
     ru: Vec<f64>,
     saved_lam: Vec<f64>,
+    /// No contact node deep inside the other body (the formulations can miss a body
+    /// pushed through another).
+    overlap: OverlapCheck,
+    /// The displacement of the last converged state, where the overlap check's paths start.
+    committed_u: Vec<f64>,
 }
 
 impl<'m> ContactProblem<'m> {
@@ -44,6 +50,8 @@ impl<'m> ContactProblem<'m> {
             n += p.num_multipliers();
         }
         let ndof = solid.u.len();
+        let overlap = OverlapCheck::new(solid.mesh, &pairs);
+        let committed_u = solid.u.clone();
         ContactProblem {
             solid,
             pairs,
@@ -53,7 +61,15 @@ impl<'m> ContactProblem<'m> {
             triplets: Triplets::default(),
             ru: vec![0.0; ndof],
             saved_lam: vec![0.0; n],
+            overlap,
+            committed_u,
         }
+    }
+
+    /// The undeformed bodies overlapping deeper than the contact tolerates (see
+    /// `overlap`): a message naming the pair, the nodes and the depth.
+    pub fn initial_overlap(&self) -> Option<String> {
+        self.overlap.at_start(self.solid.mesh)
     }
 
     pub fn pattern_rebuilds(&self) -> usize {
@@ -63,7 +79,10 @@ impl<'m> ContactProblem<'m> {
 
 impl Nonlinear for ContactProblem<'_> {
     fn state_defect(&self) -> Option<String> {
-        self.solid.solid_defect()
+        self.solid.solid_defect().or_else(|| {
+            self.overlap
+                .during_step(self.solid.mesh, &self.committed_u, &self.solid.u)
+        })
     }
     fn num_unknowns(&self) -> usize {
         self.solid.num_free() + self.lam.len()
@@ -189,6 +208,7 @@ impl Nonlinear for ContactProblem<'_> {
             p.commit(&self.solid.u);
         }
         self.saved_lam.clone_from(&self.lam);
+        self.committed_u.clone_from(&self.solid.u);
     }
 
     fn restore_step(&mut self) {

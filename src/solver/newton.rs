@@ -247,6 +247,9 @@ pub fn solve_into(
     let mut next = 0;
     let mut level = 0u32;
     let mut cuts = 0;
+    // the last state defect that cut a step: the root cause when smaller steps then fail
+    // otherwise (a body pushed through another, then a singular system)
+    let mut last_defect: Option<String> = None;
     let backtracking = problem.backtracking();
     let meets_tolerance = |n: &Norms| {
         n.relative() <= settings.tolerance
@@ -475,6 +478,7 @@ pub fn solve_into(
                         && norms.constraint <= settings.tolerance))
             {
                 if let Some(defect) = problem.state_defect() {
+                    last_defect = Some(defect.clone());
                     failure = Some(defect);
                     break;
                 }
@@ -638,8 +642,12 @@ pub fn solve_into(
             report.symbolic_factorizations = lin.symbolic_count;
             report.gmres_stalls = lin.gmres_stalls;
             report.numeric_factorizations = lin.numeric_count;
+            let earlier = match &last_defect {
+                Some(d) if *d != why => format!(" (an earlier attempt: {d})"),
+                _ => String::new(),
+            };
             return Err(Error::solve(format!(
-                "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}"
+                "Newton failed at t = {lambda:.4} after {cuts} step cuts: {why}{earlier}"
             )));
         }
         if settings.verbose {

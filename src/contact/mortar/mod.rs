@@ -84,6 +84,8 @@ pub struct Mortar {
     /// Open gaps (along the averaged normal) up to this count as closed at the start;
     /// None: only touching nodes (1e-6 of the cell size).
     pub initial_gap: Option<f64>,
+    /// initial = "all": every node facing the master starts active.
+    pub initial_all: bool,
     /// Initial gaps and overlaps up to this distance are removed, strain-free: the weighted
     /// gap of such a node is measured from its initial value (`offset`, set by `initialise`).
     /// For interfaces discretised differently on the two sides (linear chords against
@@ -188,6 +190,7 @@ impl Mortar {
             thickness,
             small,
             initial_gap: None,
+            initial_all: false,
             adjust: None,
             offset: vec![],
             friction: None,
@@ -265,7 +268,7 @@ impl ContactPair for Mortar {
             .collect();
         for k in 0..self.active.len() {
             let adjusted = self.offset[k] != 0.0;
-            self.active[k] = facing[k] && (adjusted || touch[k]);
+            self.active[k] = facing[k] && (self.initial_all || adjusted || touch[k]);
         }
         // A touching node without weight (a quadratic slave's corner on the axis, which
         // faces nothing by weight either) holds nothing: the weighted nodes of its cells,
@@ -574,6 +577,10 @@ impl ContactPair for Mortar {
         }
     }
 
+    /// adjust keeps initial overlaps up to it.
+    fn overlap_allowance(&self) -> f64 {
+        self.adjust.unwrap_or(0.0)
+    }
     /// No: a mortar re-solve redoes the contact terms and their tangent, a large part of an
     /// iteration, and on fine meshes the nodal active set cycles at a fixed
     /// linearisation (SSNP154 quadratic, 0.375 mm: 41 Newton iterations with re-solves,

@@ -1,0 +1,300 @@
+//! The contact pairs of a case: options checked against the formulation, surfaces and
+//! excluded nodes resolved on the mesh, scale-free defaults.
+
+use super::schema::CaseFile;
+use crate::contact::mortar::Mortar;
+use crate::contact::pair::ContactPair;
+use crate::contact::point_segment::{self, InitialStatus, Integration, PointToSegment};
+use crate::contact::surface::Surface;
+use crate::error::{Error, Result};
+use crate::fem::material::Modelisation;
+use crate::fem::solid::Kinematics;
+use crate::mesh::Mesh;
+
+/// The nodes of the node groups listed under `key` of a contact entry.
+fn group_nodes(mesh: &Mesh, groups: &[String], what: &str, key: &str) -> Result<Vec<usize>> {
+    let mut nodes = vec![];
+    for g in groups {
+        nodes.extend(
+            mesh.node_group(g)
+                .map_err(|e| Error::model(format!("{what}: {key}: {e}")))?,
+        );
+    }
+    Ok(nodes)
+}
+
+/// The nodes of the node groups under `key`, each of which must be a node of `slave` (the
+/// point-to-segment and node-to-segment multipliers live on slave nodes only).
+fn slave_nodes(
+    mesh: &Mesh,
+    slave: &Surface,
+    groups: &[String],
+    what: &str,
+    key: &str,
+) -> Result<Vec<usize>> {
+    let nodes = group_nodes(mesh, groups, what, key)?;
+    if let Some(n) = nodes.iter().find(|n| slave.nodes.binary_search(n).is_err()) {
+        return Err(Error::model(format!(
+            "{what}: {key}: node {} is not on the slave surface '{}' (the contact points of \
+             this formulation are on the slave surface only)",
+            n + 1,
+            slave.group
+        )));
+    }
+    Ok(nodes)
+}
+
+/// The smallest Young's modulus of the case and the shortest cell chord of `slave`: the
+/// scales of the contact parameters' defaults (no units in a default).
+fn stiffness_scale(case: &CaseFile, mesh: &Mesh, slave: &Surface) -> (f64, f64) {
+    let e_min = case
+        .material
+        .iter()
+        .map(|m| m.young)
+        .fold(f64::INFINITY, f64::min);
+    let h_min = slave
+        .cells
+        .iter()
+        .map(|&e| {
+            let n = mesh.cell_nodes(e);
+            let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+            (a[0] - b[0]).hypot(a[1] - b[1])
+        })
+        .fold(f64::INFINITY, f64::min);
+    (e_min, h_min)
+}
+
+/// The multiplier indices of `nodes` on a mortar pair: a node of the surface that carries
+/// the multipliers, or one at the same place on the other surface (the pair may have put
+/// the multipliers on the surface the user named master); Err(node) for a node on neither.
+fn multiplier_indices(
+    mesh: &Mesh,
+    m: &Mortar,
+    nodes: &[usize],
+) -> std::result::Result<Vec<usize>, usize> {
+    let (lo, hi) = crate::mesh::quality::bounding_box(mesh);
+    let tol = 1e-9 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
+    let mut out = vec![];
+    for &n in nodes {
+        if let Some(k) = m.mult_nodes.iter().position(|&s| s == n) {
+            out.push(k);
+            continue;
+        }
+        if !m.master.nodes.contains(&n) {
+            return Err(n);
+        }
+        let x = mesh.coords[n];
+        if let Some(k) = m.mult_nodes.iter().position(|&s| {
+            let y = mesh.coords[s];
+            (x[0] - y[0]).hypot(x[1] - y[1]) <= tol
+        }) {
+            out.push(k);
+        }
+    }
+    Ok(out)
+}
+
+/// The contact pairs of a case.
+pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
+    let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
+    // per cell, the compliance of its material (1 when it has none: an obstacle's cells
+    // all have one, but a malformed case is reported elsewhere)
+    let mut compliance = vec![1.0; mesh.num_cells()];
+    for spec in &case.material {
+        let c = match case.model.modelisation {
+            Modelisation::PlaneStress => 1.0 / spec.young,
+            _ => (1.0 - spec.nu * spec.nu) / spec.young,
+        };
+        if let Ok(cells) = mesh.cell_group(&spec.group) {
+            for &cell in cells {
+                compliance[cell] = c;
+            }
+        }
+    }
+    let bodies = crate::mesh::topology::node_bodies(mesh);
+    for (i, c) in case.contact.iter().enumerate() {
+        let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
+        if c.slave == c.master {
+            return Err(Error::model(format!(
+                "{what}: slave and master must be different groups"
+            )));
+        }
+        let slave = Surface::from_group(mesh, &c.slave, "slave")
+            .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        let master = Surface::from_group(mesh, &c.master, "master")
+            .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        // Checked after the options, so that their errors come first.
+        let same_body = || -> Result<()> {
+            let of = |s: &Surface| -> std::collections::BTreeSet<usize> {
+                s.nodes.iter().map(|&n| bodies[n]).collect()
+            };
+            if of(&slave).is_disjoint(&of(&master)) {
+                return Ok(());
+            }
+            Err(Error::model(format!(
+                "{what}: '{}' and '{}' belong to the same body (its cells are connected \
+                 through shared nodes); self-contact is not supported: split the body or pick \
+                 surfaces of two bodies",
+                c.slave, c.master
+            )))
+        };
+        let integration = match c.integration.as_str() {
+            "gauss" if (1..=10).contains(&c.gauss_points) => Integration::Gauss(c.gauss_points),
+            "gauss" => {
+                return Err(Error::model(format!(
+                    "{what}: gauss_points must be 1 to 10, got {}",
+                    c.gauss_points
+                )))
+            }
+            "nodal" => Integration::Nodal,
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: integration '{other}' is not one of gauss, nodal"
+                )))
+            }
+        };
+        let mortar = c.formulation == "mortar";
+        // mortar's default start is the touching nodes, the others' every point
+        let initial_name = c.initial.as_deref().unwrap_or(if mortar {
+            "touching (the default)"
+        } else {
+            "all"
+        });
+        let initial = match c.initial.as_deref().unwrap_or("all") {
+            "all" if c.initial.is_none() && mortar => InitialStatus::Closed,
+            "all" => InitialStatus::All,
+            "closed" => InitialStatus::Closed,
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: initial '{other}' is not one of all, closed"
+                )))
+            }
+        };
+        if let Some(g) = c.initial_gap {
+            if g.is_nan() || g < 0.0 || c.initial.as_deref() != Some("closed") {
+                return Err(Error::model(format!(
+                    "{what}: initial_gap must be 0 or positive and goes with initial = \"closed\", got {g} \
+                     with initial = \"{initial_name}\""
+                )));
+            }
+        }
+        if c.friction.is_nan() || c.friction < 0.0 {
+            return Err(Error::model(format!(
+                "{what}: friction must be 0 or positive, got {}",
+                c.friction
+            )));
+        }
+        if let Some(a) = c.adjust {
+            if !(a.is_finite() && a >= 0.0) || c.formulation != "mortar" {
+                return Err(Error::model(format!(
+                    "{what}: adjust (a distance: initial gaps and overlaps up to it are removed) \
+                     must be finite and 0 or positive and goes with formulation = \"mortar\", \
+                     got {a} with formulation = \"{}\"",
+                    c.formulation
+                )));
+            }
+        }
+        let node_to_segment = c.formulation == "node-to-segment";
+        if node_to_segment && c.gauss_points != 3 {
+            return Err(Error::model(format!(
+                "{what}: gauss_points does nothing with formulation = \"node-to-segment\" (one \
+                 contact point per slave node)"
+            )));
+        }
+        if !node_to_segment && (c.penalty.is_some() || !c.exclude.is_empty()) {
+            return Err(Error::model(format!(
+                "{what}: penalty and exclude go with formulation = \"node-to-segment\""
+            )));
+        }
+        if let Some(k) = c.penalty {
+            if k.is_nan() || k <= 0.0 {
+                return Err(Error::model(format!(
+                    "{what}: penalty must be positive, got {k}"
+                )));
+            }
+        }
+        match c.formulation.as_str() {
+            "point-to-segment" | "node-to-segment" => {}
+            "mortar" => {
+                same_body()?;
+                let (slave, master, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
+                // complementarity parameter: the softest E over the shortest slave cell
+                let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
+                // adjust absorbs a discretisation mismatch, a fraction of a cell; removing a
+                // cell's worth or more would hide a real gap or overlap
+                if let Some(a) = c.adjust.filter(|&a| a >= h_min) {
+                    return Err(Error::model(format!(
+                        "{what}: adjust = {a:e} must be below the smallest slave cell size h = \
+                         {h_min:.4e} of the pair (it removes the gaps and overlaps of surfaces \
+                         discretised differently, a fraction of a cell; a cell's worth or more \
+                         is a real gap or overlap)"
+                    )));
+                }
+                let mut mortar = Mortar::new(
+                    mesh,
+                    slave,
+                    master,
+                    e_min / h_min,
+                    case.model.modelisation,
+                    case.model.thickness,
+                    case.model.kinematics == Kinematics::Small,
+                );
+                mortar.initial_gap = c.initial_gap;
+                mortar.adjust = c.adjust;
+                mortar.initial_all = c.initial.as_deref() == Some("all");
+                let of = |s: &Surface| -> Vec<f64> {
+                    s.parent.iter().map(|&p| compliance[p]).collect()
+                };
+                mortar.compliance = (of(&mortar.slave), of(&mortar.master));
+                // a micro-strain of the softest body: below it a pressure is round-off
+                mortar.pressure_floor = 1e-6 * e_min;
+                if c.friction > 0.0 {
+                    mortar.friction = Some(c.friction);
+                    let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
+                    mortar.friction_excluded = multiplier_indices(mesh, &mortar, &nodes)
+                        .map_err(|n| {
+                            Error::model(format!(
+                                "{what}: friction_exclude: node {} is on neither contact surface",
+                                n + 1
+                            ))
+                        })?;
+                }
+                pairs.push(Box::new(mortar));
+                continue;
+            }
+            other => {
+                return Err(Error::model(format!(
+                    "{what}: formulation '{other}' is not one of point-to-segment, node-to-segment, mortar"
+                )))
+            }
+        }
+        // scale-free defaults: the softest body's modulus over the shortest slave cell
+        let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
+        let friction_excluded =
+            slave_nodes(mesh, &slave, &c.friction_exclude, &what, "friction_exclude")?;
+        let contact_excluded = slave_nodes(mesh, &slave, &c.exclude, &what, "exclude")?;
+        let opts = point_segment::Options {
+            integration,
+            node_to_segment,
+            penalty: c.penalty,
+            contact_excluded,
+            rho: c.rho.unwrap_or(1e-3 * e_min / h_min),
+            initial,
+            initial_gap: c.initial_gap,
+            friction: (c.friction > 0.0).then_some(c.friction),
+            rho_f: c.rho_f.unwrap_or(60.0 / h_min),
+            friction_excluded,
+            ..Default::default()
+        };
+        same_body()?;
+        pairs.push(Box::new(PointToSegment::new(
+            mesh,
+            slave,
+            master,
+            opts,
+            case.model.modelisation,
+            case.model.thickness,
+        )));
+    }
+    Ok(pairs)
+}
