@@ -243,6 +243,7 @@ fn check_contacts(case: &CaseFile) -> Result<()> {
                 ("rho", c.rho.is_some()),
                 ("rho_f", c.rho_f.is_some()),
                 ("integration", c.integration != "gauss"),
+                ("master_normal", c.master_normal.is_some()),
             ];
             if let Some((key, _)) = idle.iter().find(|k| k.1) {
                 return Err(Error::model(format!(

@@ -284,6 +284,15 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             friction: (c.friction > 0.0).then_some(c.friction),
             rho_f: c.rho_f.unwrap_or(60.0 / h_min),
             friction_excluded,
+            smoothed_normal: match c.master_normal.as_deref() {
+                None | Some("smoothed") => true,
+                Some("segment") => false,
+                Some(other) => {
+                    return Err(Error::model(format!(
+                        "{what}: master_normal '{other}' is not one of smoothed, segment"
+                    )))
+                }
+            },
             ..Default::default()
         };
         same_body()?;

@@ -383,6 +383,12 @@ pub struct ContactSpec {
     /// node-to-segment: node groups excluded from contact.
     #[serde(default)]
     pub exclude: Vec<String>,
+    /// point-to-segment, node-to-segment: the master normal on straight cells, "smoothed"
+    /// (interpolated between the vertices' averaged normals: continuous along a polygon
+    /// standing for a curve; the default) or "segment" (each cell's own normal, as the
+    /// reference code does by default).
+    #[serde(default)]
+    pub master_normal: Option<String>,
 }
 
 fn default_formulation() -> String {

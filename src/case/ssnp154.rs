@@ -218,6 +218,8 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         friction_exclude: vec![],
         penalty: None,
         exclude: if tied { vec!["C".into()] } else { vec![] },
+        // the reference's own cell normals on the cylinder's polygon (no smoothing)
+        master_normal: (formulation != "mortar").then(|| "segment".into()),
     });
     if friction {
         // Coulomb 0.1, nodal integration (trapezoid / Simpson), C excluded from friction only

@@ -22,4 +22,5 @@ pub mod point_segment;
 pub mod problem;
 pub mod projection;
 pub mod real;
+pub(crate) mod smoothed_normal;
 pub mod surface;
