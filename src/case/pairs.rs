@@ -296,14 +296,22 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             ..Default::default()
         };
         same_body()?;
-        pairs.push(Box::new(PointToSegment::new(
+        let mut pair = PointToSegment::new(
             mesh,
             slave,
             master,
             opts,
             case.model.modelisation,
             case.model.thickness,
-        )));
+        );
+        // node-to-segment multipliers are nodal forces: its augmentation is a stiffness
+        // (force / length), 1e-3 E_min/h times a node's mean share of the surface (h times
+        // the thickness, or 2πr), so that it is the same in any units (in stress / length
+        // it was 1e3 times stiffer in N-m-Pa than in N-mm-MPa, and two discs diverged)
+        if node_to_segment && c.rho.is_none() {
+            pair.opts.rho *= pair.mean_node_share();
+        }
+        pairs.push(Box::new(pair));
     }
     Ok(pairs)
 }

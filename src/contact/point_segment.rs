@@ -386,6 +386,13 @@ impl PointToSegment {
     }
 
     /// Normal multipliers on the slave nodes, then (with friction) tangential ones.
+    /// The mean share of the slave surface per multiplier (node-to-segment: length times
+    /// thickness, or 2πr; the continuous method: 1).
+    pub fn mean_node_share(&self) -> f64 {
+        let n = self.node_weight.len().max(1) as f64;
+        self.node_weight.iter().sum::<f64>() / n
+    }
+
     pub fn num_multipliers(&self) -> usize {
         self.mult_nodes.len() * if self.opts.friction.is_some() { 2 } else { 1 }
     }
