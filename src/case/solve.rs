@@ -194,6 +194,7 @@ pub fn run_keeping(
         finish(solved, kept, report)
     } else {
         let pairs = build_pairs(case, mesh)?;
+        supported_slave_nodes(case, &problem, &pairs)?;
         let mut cp = ContactProblem::new(problem, pairs);
         if let Some(e) = cp.initial_overlap() {
             return Err(Error::model(e).into());
@@ -332,4 +333,50 @@ fn final_outcome(
         stress,
         probes,
     })
+}
+
+/// A slave node with both displacements imposed (a support, a rotation) facing a master
+/// node with both imposed too has a contact constraint that acts on nothing:
+/// node-to-segment's row is then empty (a singular system naming nothing) and quadratic
+/// mortar's nearly so (displacements of 1e16 without an error). Refused, naming the node
+/// and what to do.
+fn supported_slave_nodes(
+    case: &CaseFile,
+    problem: &SolidProblem,
+    pairs: &[Box<dyn crate::contact::pair::ContactPair>],
+) -> Result<()> {
+    use crate::assembly::dofs::Role;
+    let roles = &problem.asm.dofs.roles;
+    let fixed =
+        |n: usize| matches!(roles[2 * n], Role::Fixed) && matches!(roles[2 * n + 1], Role::Fixed);
+    let coords = &problem.mesh.coords;
+    for (i, (p, c)) in pairs.iter().zip(&case.contact).enumerate() {
+        let master = &p.surfaces().1.nodes;
+        // (a slave moved as a whole, a rigid indenter, still acts on the master's nodes)
+        let held = p.multiplier_nodes().iter().find(|&&n| {
+            let nearest = master.iter().copied().min_by(|&a, &b| {
+                let d = |m: usize| (coords[m][0] - coords[n][0]).hypot(coords[m][1] - coords[n][1]);
+                d(a).total_cmp(&d(b))
+            });
+            !p.excluded_nodes().contains(&n) && fixed(n) && nearest.is_some_and(fixed)
+        });
+        if let Some(&n) = held {
+            let exclude = if c.formulation == "node-to-segment" {
+                ", or list it in exclude"
+            } else {
+                ""
+            };
+            return Err(Error::model(format!(
+                "[[contact]] {} ({} on {}): slave node {} has both displacements imposed, and \
+                 so has the master node it faces: its contact constraint acts on nothing; \
+                 impose one component only, or leave the node out of the slave surface\
+                 {exclude}",
+                i + 1,
+                c.slave,
+                c.master,
+                n + 1
+            )));
+        }
+    }
+    Ok(())
 }

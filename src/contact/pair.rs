@@ -49,6 +49,10 @@ pub trait ContactPair {
     /// Slave node of each normal multiplier (multiplier k; with friction the tangential
     /// one of node k is multiplier `len + k`).
     fn multiplier_nodes(&self) -> &[usize];
+    /// Slave nodes left out of contact (node-to-segment's `exclude`).
+    fn excluded_nodes(&self) -> &[usize] {
+        &[]
+    }
     /// (slave node, [normal, tangential] multiplier) as the formulation stores them (the
     /// tangential one 0 without friction).
     fn nodal_multipliers(&self, lam: &[f64]) -> Vec<(usize, [f64; 2])> {

@@ -1296,6 +1296,9 @@ impl super::pair::ContactPair for PointToSegment {
     fn multiplier_nodes(&self) -> &[usize] {
         &self.mult_nodes
     }
+    fn excluded_nodes(&self) -> &[usize] {
+        &self.opts.contact_excluded
+    }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)
     }
