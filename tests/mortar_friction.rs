@@ -192,15 +192,14 @@ fn pin_mesh() -> Mesh {
     );
     pin.node_group("Centre", |x| x[0].abs() < 1e-9 && x[1].abs() < 1e-9);
     pin.node_group("Sym", |x| x[1].abs() < 1e-9);
-    let on_axis = |x: [f64; 2]| x[1].abs() < 1e-9 && (x[0].abs() - R_PIN).abs() < 1e-9;
-    pin.node_group("ArcEnds", on_axis);
+
     let mut plate = Patches::new(kind);
     let hole = circle(R_PIN);
     let outer = |th: f64| square_at(3.0 * R_PIN, th);
     let groups = ("Body", Some("Hole"), Some("Outer"));
     band(&mut plate, groups, &hole, &outer, 0.0, PI, 10, n_hole);
     plate.node_group("Sym", |x| x[1].abs() < 1e-9);
-    plate.node_group("HoleEnds", on_axis);
+
     bodies(&[("Pin", &pin.finish()), ("Plate", &plate.finish())])
 }
 
@@ -238,7 +237,6 @@ formulation = "mortar"
 initial = "all"
 adjust = 0.02
 friction = {MU_PIN}
-friction_exclude = ["PinArcEnds", "PlateHoleEnds"]
 [solver]
 steps = 5
 tolerance = 1e-9
