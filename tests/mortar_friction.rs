@@ -6,10 +6,11 @@
 mod common;
 
 use common::patches::{band, circle, square_at, Patches};
-use common::{block_on_foundation, bodies, case_head, group_sum};
+use common::{bodies, case_head, group_sum};
 use std::f64::consts::PI;
 use std::time::Instant;
 use tribo::case::{run, schema::CaseFile, Outcome};
+use tribo::mesh::generate::rectangle;
 use tribo::mesh::{CellKind, Mesh};
 
 fn solve(text: &str, mesh: &Mesh, label: &str) -> Outcome {
@@ -40,12 +41,16 @@ fn cone_excess(pressure: &[(usize, f64)], shear: &(f64, Vec<(usize, f64)>)) -> f
 
 const MU_BLOCK: f64 = 1.0;
 
-/// The 1 × 0.5 block on a foundation 4 long (22 cells of 0.18 against the block's 0.2:
-/// spacings within 20 %, so the named slave carries the multipliers), foundation's bottom
-/// clamped; the block's top pressed down 0.01 in two steps, then moved 0.1 sideways in
-/// ten while held down.
-fn block(slave_block: bool, kinematics: &str) -> (Mesh, Outcome) {
-    let (mesh, head) = block_on_foundation(4.0, 22);
+/// The 1 × 0.5 block (5k × 3k cells) on a foundation 4 long (22k × 2k cells: 0.18/k
+/// against the block's 0.2/k, spacings within 20 %, so the named slave carries the
+/// multipliers), foundation's
+/// bottom clamped; the block's top pressed down 0.01 in two steps, then moved 0.1 sideways
+/// in ten while held down.
+fn block(slave_block: bool, kinematics: &str, k: usize) -> (Mesh, Outcome) {
+    let lower = rectangle([-1.0, -1.0], 4.0, 1.0, 22 * k, 2 * k, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([0.0, 0.0], 1.0, 0.5, 5 * k, 3 * k, CellKind::Quad4, 0.0).unwrap();
+    let mesh = bodies(&[("Lower", &lower), ("Upper", &upper)]);
+    let head = case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 1000.0, 0.3)]);
     let (slave, master) = if slave_block {
         ("UpperBottom", "LowerTop")
     } else {
@@ -84,13 +89,19 @@ steps = 12
 tolerance = 1e-9
 "#
     );
-    let out = solve(&text, &mesh, &format!("block, slave {slave}, {kinematics}"));
+    let out = solve(
+        &text,
+        &mesh,
+        &format!("block {k}, slave {slave}, {kinematics}"),
+    );
     (mesh, out)
 }
 
 fn check_block(slave_block: bool) {
-    for kinematics in ["small", "large"] {
-        check_block_in(slave_block, kinematics);
+    // (k = 2 with large kinematics and the foundation as slave does not converge: its
+    // nodes under the block's corners, half covered, flip in and out of contact)
+    for (kinematics, k) in [("small", 1), ("large", 1)] {
+        check_block_in(slave_block, kinematics, k);
     }
 }
 
@@ -98,8 +109,8 @@ fn check_block(slave_block: bool) {
 /// kinematics the nodal frames are the reference ones, so the resultant obeys Coulomb too:
 /// T ≤ μ N, and T = μ N to 1e-6 once every loaded node slips. With large kinematics the
 /// indented surfaces tilt the nodal frames (T/(μN) − 1 is printed: about −1e-2).
-fn check_block_in(slave_block: bool, kinematics: &str) {
-    let (mesh, out) = block(slave_block, kinematics);
+fn check_block_in(slave_block: bool, kinematics: &str, k: usize) {
+    let (mesh, out) = block(slave_block, kinematics, k);
     let carrier = &out.contact_surfaces[0].0.group;
     assert_eq!(
         carrier,
