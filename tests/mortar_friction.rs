@@ -176,6 +176,8 @@ fn block_pressed_then_sheared_with_the_foundation_as_slave() {
 
 const MU_PIN: f64 = 0.1;
 const R_PIN: f64 = 5.0;
+/// The half model's force on the pin's centre (about what the 0.01 push takes).
+const PIN_FORCE: f64 = 543.0;
 
 /// Half model (symmetric about y = 0): a pin of radius R (a core square of half-side 0.4 R
 /// and a band to the circle, 24 arc cells over 180°) in a hole of radius R of a square
@@ -214,9 +216,14 @@ fn pin_mesh() -> Mesh {
     bodies(&[("Pin", &pin.finish()), ("Plate", &plate.finish())])
 }
 
-/// The pin's centre pushed 0.01 (0.2 % of R) along x in 5 steps, the plate's outer sides
+/// The pin's centre pushed 0.01 (0.2 % of R) along x, or by a force, in 5 steps, the plate's outer sides
 /// clamped, steel on steel; the polygon chords' mismatch (≤ h²/8R = 0.011) adjusted away.
-fn pin(slave_pin: bool, model: &str, kinematics: &str) -> (Mesh, Outcome) {
+fn pin(slave_pin: bool, model: &str, kinematics: &str, force: bool) -> (Mesh, Outcome) {
+    let load = if force {
+        format!("[[force]]\ngroup = \"PinCentre\"\nfx = {PIN_FORCE}")
+    } else {
+        "[[displacement]]\ngroup = \"PinCentre\"\ndx = 0.01".to_string()
+    };
     let mesh = pin_mesh();
     let head = case_head(&[("PinBody", 210000.0, 0.3), ("PlateBody", 210000.0, 0.3)]);
     let (slave, master) = if slave_pin {
@@ -239,9 +246,7 @@ dy = 0.0
 [[displacement]]
 group = "PinSym"
 dy = 0.0
-[[displacement]]
-group = "PinCentre"
-dx = 0.01
+{load}
 [[contact]]
 slave = "{slave}"
 master = "{master}"
@@ -263,18 +268,25 @@ tolerance = 1e-9
 }
 
 fn check_pin(slave_pin: bool) {
-    for (model, kinematics) in [
-        ("plane_strain", "small"),
-        ("plane_stress", "small"),
-        ("plane_strain", "large"),
+    for (model, kinematics, force) in [
+        ("plane_strain", "small", false),
+        ("plane_stress", "small", false),
+        ("plane_strain", "large", false),
+        ("plane_strain", "small", true),
+        ("plane_strain", "large", true),
     ] {
-        let (mesh, out) = pin(slave_pin, model, kinematics);
+        let (mesh, out) = pin(slave_pin, model, kinematics, force);
         let carrier = &out.contact_surfaces[0].0.group;
         assert_eq!(carrier, if slave_pin { "PinArc" } else { "PlateHole" });
         assert_eq!(out.report.steps.len(), 5, "a step was cut");
         // the pin touches the plate only through the contact: its load is the contact
         // resultant, which the plate's clamped sides must take back
-        let (load, _) = group_sum(&mesh, "PinCentre", &out.reactions);
+        // pushed by a force, the pin is held by the contact alone
+        let load = if force {
+            PIN_FORCE
+        } else {
+            group_sum(&mesh, "PinCentre", &out.reactions).0
+        };
         let (held, _) = group_sum(&mesh, "PlateOuter", &out.reactions);
         let excess = cone_excess(&out.contact_pressure[0], &out.contact_shear[0]);
         let peak_t = out.contact_shear[0]
