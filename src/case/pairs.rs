@@ -94,6 +94,58 @@ fn multiplier_indices(
     Ok(out)
 }
 
+/// The multiplier nodes of a mortar pair on a line of symmetry: the node held at zero
+/// along the axis nearest its surface's tangent by a [[displacement]], and so is the
+/// nearest node of the other surface. Their relative slip is zero whatever the load, and
+/// so is the shear, by symmetry; yet a friction multiplier there has a slave force on the
+/// held component alone (the dual basis is biorthogonal) and meets the free dofs only
+/// through the master's weak terms, so its stick law is near-singular and the stick/slip
+/// branches cycle (a pin in a holed plate, half model, plate as slave: no convergence at
+/// any step size). Such nodes are frictionless, as `friction_exclude` would make them
+/// (SSNP154 excludes its axis node C so).
+fn on_symmetry_lines(case: &CaseFile, mesh: &Mesh, m: &Mortar) -> Vec<usize> {
+    let mut held = vec![[false; 2]; mesh.num_nodes()];
+    for d in &case.displacement {
+        let Ok(nodes) = mesh.node_group(&d.group) else {
+            continue;
+        };
+        for (c, v) in [d.dx, d.dy].into_iter().enumerate() {
+            if v == Some(0.0) {
+                for &n in &nodes {
+                    held[n][c] = true;
+                }
+            }
+        }
+    }
+    let dist = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).hypot(a[1] - b[1]);
+    let mut out = vec![];
+    for (k, &n) in m.mult_nodes.iter().enumerate() {
+        // |tangent| components summed over the node's cells (chord directions)
+        let mut t = [0.0f64; 2];
+        for &c in &m.slave.cells {
+            let nodes = mesh.cell_nodes(c);
+            if nodes.contains(&n) {
+                let (a, b) = (mesh.coords[nodes[0]], mesh.coords[nodes[1]]);
+                let l = dist(a, b);
+                t[0] += (b[0] - a[0]).abs() / l;
+                t[1] += (b[1] - a[1]).abs() / l;
+            }
+        }
+        let axis = usize::from(t[1] > t[0]);
+        let x = mesh.coords[n];
+        let nearest = m
+            .master
+            .nodes
+            .iter()
+            .copied()
+            .min_by(|&a, &b| dist(mesh.coords[a], x).total_cmp(&dist(mesh.coords[b], x)));
+        if held[n][axis] && nearest.is_some_and(|q| held[q][axis]) {
+            out.push(k);
+        }
+    }
+    out
+}
+
 /// The contact pairs of a case.
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
@@ -251,13 +303,16 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
                     let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;
-                    mortar.friction_excluded = multiplier_indices(mesh, &mortar, &nodes)
-                        .map_err(|n| {
-                            Error::model(format!(
-                                "{what}: friction_exclude: node {} is on neither contact surface",
-                                n + 1
-                            ))
-                        })?;
+                    let mut excluded = multiplier_indices(mesh, &mortar, &nodes).map_err(|n| {
+                        Error::model(format!(
+                            "{what}: friction_exclude: node {} is on neither contact surface",
+                            n + 1
+                        ))
+                    })?;
+                    excluded.extend(on_symmetry_lines(case, mesh, &mortar));
+                    excluded.sort_unstable();
+                    excluded.dedup();
+                    mortar.friction_excluded = excluded;
                 }
                 pairs.push(Box::new(mortar));
                 continue;

@@ -53,12 +53,12 @@ impl Surface {
                 *degree.entry(n).or_insert(0) += 1;
             }
         }
-        // A connected open chain: every corner in at most 2 edges, exactly 2 ends, one component.
+        // One connected chain, open (2 ends) or closed (a hole, a full ring: no end).
         let ends = degree.values().filter(|&&d| d == 1).count();
-        if degree.values().any(|&d| d > 2) || ends != 2 || !connected(mesh, &cells) {
+        if degree.values().any(|&d| d > 2) || (ends != 2 && ends != 0) || !connected(mesh, &cells) {
             return Err(Error::model(format!(
                 "{role} surface '{group}' is not a single connected chain of edges (check the group: \
-                 it must be one open curve)"
+                 it must be one open or closed curve)"
             )));
         }
         let mut nodes: Vec<usize> = cells

@@ -2,6 +2,8 @@
 //! imposed node by node.
 #![allow(dead_code)]
 
+pub mod patches;
+
 use tribo::assembly::dofs::DofMap;
 use tribo::assembly::Assembler;
 use tribo::fem::material::{Elastic, Modelisation};

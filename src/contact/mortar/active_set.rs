@@ -161,8 +161,44 @@ impl Mortar {
                 sl[k] += v;
             }
         }
-        let facing = (0..nm).map(|k| cov[k] > 0.5 * d[k]).collect();
+        let facing = self.facing(mesh, u, &cov, &d);
         (g, d, facing, sl)
+    }
+
+    /// Whether each slave node faces the master: more than half of its ∫ N_j covered by
+    /// master segments. A node under the master's end (the corner of a block on a longer
+    /// foundation that carries the multipliers) sits at half, where the iterates' tiny
+    /// motions of the corner flip it, and its activity with it (a 2-cycle at any step
+    /// size): an active one there goes on facing down to 0.4.
+    pub(super) fn facing(&self, mesh: &Mesh, u: &[f64], cov: &[f64], d: &[f64]) -> Vec<bool> {
+        (0..cov.len())
+            .map(|k| {
+                let held = self.active.get(k).copied().unwrap_or(false)
+                    && self.under_master_end(mesh, u, k);
+                cov[k] > if held { 0.4 } else { 0.5 } * d[k]
+            })
+            .collect()
+    }
+
+    /// Whether an end of the master chain lies within a cell of slave node k.
+    fn under_master_end(&self, mesh: &Mesh, u: &[f64], k: usize) -> bool {
+        let n = self.mult_nodes[k];
+        let x = Self::pos(mesh, u, n);
+        let reach = self
+            .slave
+            .cells
+            .iter()
+            .filter(|&&c| mesh.cell_nodes(c).contains(&n))
+            .map(|&c| {
+                let nodes = mesh.cell_nodes(c);
+                let (a, b) = (Self::pos(mesh, u, nodes[0]), Self::pos(mesh, u, nodes[1]));
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+            .fold(0.0, f64::max);
+        self.master_ends.iter().any(|&m| {
+            let y = Self::pos(mesh, u, m);
+            (x[0] - y[0]).hypot(x[1] - y[1]) <= reach
+        })
     }
 }
 

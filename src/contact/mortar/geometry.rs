@@ -4,7 +4,7 @@
 //! differentiates them exactly.
 
 use super::super::projection::point_and_tangent;
-use super::super::real::{constant, Real};
+use super::super::real::{constant, value, Real};
 use super::super::surface::Surface;
 use super::Mortar;
 use crate::fem::element::{shape, MAX_NODES};
@@ -110,6 +110,57 @@ impl Mortar {
         }
         let l = acc[0].hypot(acc[1]);
         [acc[0] / l, acc[1] / l]
+    }
+
+    /// With `adjust`, the step from master cell im (node positions xm) at ξ to the smooth
+    /// curve its nodes lie on: through its nodes and tangent at its ends to the averaged
+    /// nodal normals (a cubic on a Seg2, a quartic on a Seg3: for cells inscribed in a
+    /// circle, the arc to within O(h³/R²) and O(h⁵/R⁴)). The initial offsets remove the
+    /// mismatch where each slave node starts; a slave sliding along the master meets
+    /// other parts of its cells, so the gap is measured to the curve. The tangent holds the
+    /// nodal normals fixed in the cell's chord frame: exact for a rigid rotation, leaving
+    /// out their turn relative to the cell (of the order of the strains).
+    pub(super) fn cell_to_curve<T: Real>(
+        &self,
+        mesh: &Mesh,
+        u: &[f64],
+        im: usize,
+        xm: &[[T; 2]],
+        xi: T,
+    ) -> [T; 2] {
+        let mc = self.master.cells[im];
+        let (kind, nodes) = (mesh.kind(mc), mesh.cell_nodes(mc));
+        let chord = [xm[1][0] - xm[0][0], xm[1][1] - xm[0][1]];
+        let l = norm(chord);
+        let e = [chord[0] / l, chord[1] / l];
+        let nu = unit_normal(CellKind::Seg2, xm, self.master.ccw[im], constant(0.0));
+        // a nodal normal in the chord's frame (its components there constant in the
+        // tangent: a rigid rotation turns it with the cell)
+        let normal = |n| {
+            let v = self.averaged_normal(mesh, u, &self.master, &self.master_cells_of_node, n);
+            let (a, b) = (
+                v[0] * value(nu[0]) + v[1] * value(nu[1]),
+                v[0] * value(e[0]) + v[1] * value(e[1]),
+            );
+            [nu[0] * a + e[0] * b, nu[1] * a + e[1] * b]
+        };
+        // the curve's slopes against the cell's own tangent at its ends, from n ⊥ tangent
+        let slope = |end: f64, n: [T; 2]| {
+            let (_, t) = point_and_tangent(kind, xm, constant(end));
+            -(t[0] * n[0] + t[1] * n[1]) / norm(t)
+        };
+        let (sa, sb) = (slope(-1.0, normal(nodes[0])), slope(1.0, normal(nodes[1])));
+        let s = (xi + 1.0) * 0.5;
+        let r = -s + 1.0;
+        let h = if kind == CellKind::Seg3 {
+            // zero at the mid-side node too
+            let (a, b) = (l * sa, l * (sb - sa));
+            s * r * (-s * 2.0 + 1.0) * (a + b * s)
+        } else {
+            l * (sa * s * r * r - sb * s * s * r)
+        };
+        let nu = unit_normal(kind, xm, self.master.ccw[im], xi);
+        [h * nu[0], h * nu[1]]
     }
 
     /// The measure of the surface element per unit length at p: 2πr in axisymmetry, the

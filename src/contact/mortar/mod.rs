@@ -69,6 +69,8 @@ pub struct Mortar {
     /// master cells around each master corner node (small kinematics: the master's averaged
     /// normals enter the interface normal)
     master_cells_of_node: HashMap<usize, Vec<usize>>,
+    /// The master chain's end nodes (none on a closed chain).
+    master_ends: Vec<usize>,
     candidates: Vec<Vec<usize>>,
     /// A superset of the candidates over the whole solve (those within PATTERN_MARGIN
     /// cell sizes initially, and every candidate found since): the matrix pattern covers
@@ -165,6 +167,12 @@ impl Mortar {
         };
         let cells_of_node = corner_cells(&slave);
         let master_cells_of_node = corner_cells(&master);
+        let mut master_ends: Vec<usize> = master_cells_of_node
+            .iter()
+            .filter(|(_, cells)| cells.len() == 1)
+            .map(|(&n, _)| n)
+            .collect();
+        master_ends.sort_unstable();
         let cell_mults = slave
             .cells
             .iter()
@@ -180,6 +188,7 @@ impl Mortar {
             mult_nodes,
             mult_of,
             cells_of_node,
+            master_ends,
             master_cells_of_node,
             saved_candidates: candidates.clone(),
             pattern_candidates,
@@ -402,7 +411,7 @@ impl ContactPair for Mortar {
                     cover[j] += v;
                 }
             }
-            let facing = (0..nm).map(|j| cover[j] > 0.5 * d[j]).collect();
+            let facing = self.facing(mesh, u, &cover, &d);
             *self.linearisation.lock().unwrap() = Some(active_set::Linearisation {
                 u0: u.to_vec(),
                 g,

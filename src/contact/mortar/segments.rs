@@ -264,6 +264,10 @@ impl Mortar {
                 }
                 any = true;
                 let (mut pm, _) = point_and_tangent(mkind, &xm, xim);
+                if self.adjust.is_some() {
+                    let step = self.cell_to_curve(mesh, u, im, &xm, xim);
+                    pm = [pm[0] + step[0], pm[1] + step[1]];
+                }
                 let mut ps = p;
                 if self.small {
                     // geometry on the reference configuration, gap with the displacements
