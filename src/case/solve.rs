@@ -353,12 +353,16 @@ fn supported_slave_nodes(
     for (i, (p, c)) in pairs.iter().zip(&case.contact).enumerate() {
         let master = &p.surfaces().1.nodes;
         // (a slave moved as a whole, a rigid indenter, still acts on the master's nodes)
+        // (the nearest master node is searched only for the supported slave nodes)
+        let nearest = |n: usize| {
+            let d = |m: usize| (coords[m][0] - coords[n][0]).hypot(coords[m][1] - coords[n][1]);
+            master
+                .iter()
+                .copied()
+                .min_by(|&a, &b| d(a).total_cmp(&d(b)))
+        };
         let held = p.multiplier_nodes().iter().find(|&&n| {
-            let nearest = master.iter().copied().min_by(|&a, &b| {
-                let d = |m: usize| (coords[m][0] - coords[n][0]).hypot(coords[m][1] - coords[n][1]);
-                d(a).total_cmp(&d(b))
-            });
-            !p.excluded_nodes().contains(&n) && fixed(n) && nearest.is_some_and(fixed)
+            !p.excluded_nodes().contains(&n) && fixed(n) && nearest(n).is_some_and(fixed)
         });
         if let Some(&n) = held {
             let exclude = if c.formulation == "node-to-segment" {
