@@ -17,6 +17,9 @@ use super::surface::Surface;
 use crate::mesh::Mesh;
 use std::collections::HashMap;
 
+/// A master cell's own inward unit normal n_c, tangent τ_c and rotation rate ω_c over dofs.
+type CellFrame = ([f64; 2], [f64; 2], Vec<(usize, f64)>);
+
 /// A master cell's own inward unit normal and tangent (τ = t/|t|) at its end `node`, and
 /// its rotation rate ω_c over dofs (Seg2 and Seg3 alike: dN_a/dξ at that end).
 fn cell_frame(
@@ -25,7 +28,7 @@ fn cell_frame(
     x: &dyn Fn(usize) -> [f64; 2],
     im: usize,
     node: usize,
-) -> ([f64; 2], [f64; 2], Vec<(usize, f64)>) {
+) -> CellFrame {
     let c = master.cells[im];
     let nodes = mesh.cell_nodes(c);
     let xs: Vec<[f64; 2]> = nodes.iter().map(|&m| x(m)).collect();
@@ -53,34 +56,49 @@ fn cell_frame(
     (n, tau, omega)
 }
 
-/// A vertex's averaged unit normal n̂ and the coefficients of τ·δn̂ for a given unit τ.
-fn vertex(
-    mesh: &Mesh,
-    master: &Surface,
-    cells_of_node: &HashMap<usize, Vec<usize>>,
-    x: &dyn Fn(usize) -> [f64; 2],
-    node: usize,
-    tau: Option<[f64; 2]>,
-) -> ([f64; 2], Vec<(usize, f64)>) {
-    let frames: Vec<_> = cells_of_node[&node]
-        .iter()
-        .map(|&im| cell_frame(mesh, master, x, im, node))
-        .collect();
-    let v = frames
-        .iter()
-        .fold([0.0, 0.0], |s, f| [s[0] + f.0[0], s[1] + f.0[1]]);
-    let lv = v[0].hypot(v[1]);
-    let nv = [v[0] / lv, v[1] / lv];
-    let mut coefs = vec![];
-    if let Some(t) = tau {
-        // τ·(I − n̂n̂ᵀ)(−τ_c ω_c)/|v| = −[τ·τ_c − (τ·n̂)(n̂·τ_c)] ω_c / |v|
-        let tn = t[0] * nv[0] + t[1] * nv[1];
-        for (_, tc, omega) in &frames {
-            let f = -((t[0] * tc[0] + t[1] * tc[1]) - tn * (nv[0] * tc[0] + nv[1] * tc[1])) / lv;
-            coefs.extend(omega.iter().map(|&(d, w)| (d, f * w)));
+/// A vertex: its averaged unit normal n̂, |Σ_c n_c|, and its cells' frames (n_c, τ_c, ω_c).
+struct Vertex {
+    normal: [f64; 2],
+    length: f64,
+    frames: Vec<CellFrame>,
+}
+
+impl Vertex {
+    fn new(
+        mesh: &Mesh,
+        master: &Surface,
+        cells_of_node: &HashMap<usize, Vec<usize>>,
+        x: &dyn Fn(usize) -> [f64; 2],
+        node: usize,
+    ) -> Self {
+        let frames: Vec<_> = cells_of_node[&node]
+            .iter()
+            .map(|&im| cell_frame(mesh, master, x, im, node))
+            .collect();
+        let v = frames
+            .iter()
+            .fold([0.0, 0.0], |s, f| [s[0] + f.0[0], s[1] + f.0[1]]);
+        let length = v[0].hypot(v[1]);
+        Vertex {
+            normal: [v[0] / length, v[1] / length],
+            length,
+            frames,
         }
     }
-    (nv, coefs)
+
+    /// The coefficients of τ·δn̂ for a unit τ:
+    /// τ·(I − n̂n̂ᵀ)(−τ_c ω_c)/|v| = −[τ·τ_c − (τ·n̂)(n̂·τ_c)] ω_c / |v|.
+    fn turn_along(&self, t: [f64; 2]) -> Vec<(usize, f64)> {
+        let nv = self.normal;
+        let tn = t[0] * nv[0] + t[1] * nv[1];
+        let mut coefs = vec![];
+        for (_, tc, omega) in &self.frames {
+            let f = -((t[0] * tc[0] + t[1] * tc[1]) - tn * (nv[0] * tc[0] + nv[1] * tc[1]))
+                / self.length;
+            coefs.extend(omega.iter().map(|&(d, w)| (d, f * w)));
+        }
+        coefs
+    }
 }
 
 /// The smoothed inward normal at ξ on Seg2 master cell `im`, its tangent (oriented as the
@@ -95,8 +113,8 @@ pub(crate) fn smoothed_frame(
     cxi: Option<&[(usize, f64)]>,
 ) -> ([f64; 2], [f64; 2], Vec<(usize, f64)>) {
     let nodes = mesh.cell_nodes(master.cells[im]);
-    let (n0, _) = vertex(mesh, master, cells_of_node, x, nodes[0], None);
-    let (n1, _) = vertex(mesh, master, cells_of_node, x, nodes[1], None);
+    let ends = [nodes[0], nodes[1]].map(|n| Vertex::new(mesh, master, cells_of_node, x, n));
+    let (n0, n1) = (ends[0].normal, ends[1].normal);
     let (w0, w1) = (0.5 * (1.0 - xi), 0.5 * (1.0 + xi));
     let v = [w0 * n0[0] + w1 * n1[0], w0 * n0[1] + w1 * n1[1]];
     let lv = v[0].hypot(v[1]);
@@ -112,8 +130,8 @@ pub(crate) fn smoothed_frame(
         let dn = [n1[0] - n0[0], n1[1] - n0[1]];
         let f = -0.5 * (tau[0] * dn[0] + tau[1] * dn[1]) / lv;
         omega.extend(cxi.iter().map(|&(d, c)| (d, f * c)));
-        for (node, wk) in [(nodes[0], w0), (nodes[1], w1)] {
-            let (_, coefs) = vertex(mesh, master, cells_of_node, x, node, Some(tau));
+        for (end, wk) in ends.iter().zip([w0, w1]) {
+            let coefs = end.turn_along(tau);
             omega.extend(coefs.into_iter().map(|(d, c)| (d, -wk * c / lv)));
         }
     }
