@@ -120,9 +120,28 @@ fn chord_steps_converge_to_the_newton_state_with_fewer_factorisations() {
 /// holds it.)
 #[test]
 fn zero_load_converges_to_the_unloaded_state() {
+    // Issue 20: with nothing loading the bodies, every formulation returns u = 0 at once
+    // (the contact points closed at the start by `initial_gap` open again with no pressure),
+    // rather than pulling the closed points in and releasing them one by one (6–22
+    // iterations before).
     use tribo::case::{run, ssnp154};
-    for (id, formulation) in [("A", None), ("C", None), ("E", None)] {
-        let spec = ssnp154::builtin_mesh(false, 3.0);
+    let rows = [
+        ("A", None),
+        ("B", None),
+        ("C", None),
+        ("D", None),
+        ("E", None),
+        ("F", None),
+        ("A", Some("mortar")),
+        ("B", Some("mortar")),
+        ("C", Some("mortar")),
+        ("D", Some("mortar")),
+        ("C", Some("node-to-segment")),
+        ("D", Some("point-to-segment")),
+    ];
+    for (id, formulation) in rows {
+        let quadratic = matches!(id, "B" | "D" | "F");
+        let spec = ssnp154::builtin_mesh(quadratic, 3.0);
         let mesh = build_mesh(&spec, std::path::Path::new("")).unwrap();
         let mut c = ssnp154::contact_case(id, spec, formulation);
         for f in c.force.iter_mut() {
@@ -139,10 +158,24 @@ fn zero_load_converges_to_the_unloaded_state() {
             "{id} {formulation:?}: max |u| = {umax:e}, max |stress| = {smax:e}, {} iterations",
             out.report.total_iterations
         );
+        if formulation == Some("mortar") {
+            // Dual mortar's weighted gap at the touching node C is negative at rest (its
+            // dual shape function is negative where the gap grows as x²/2R): its discrete
+            // solution lifts the cylinder rigidly by that much (0.0125 mm here), stress-free.
+            // A known shortfall of issue 20 (u = 0 for every formulation).
+            assert!(
+                smax < 1e-9 * 70000.0,
+                "{id} mortar: max |stress| = {smax:e}"
+            );
+            assert!(umax < 0.02, "{id} mortar: max |u| = {umax:e}");
+            continue;
+        }
+        assert_eq!(umax, 0.0, "{id} {formulation:?}: max |u| = {umax:e}");
+        assert_eq!(smax, 0.0, "{id} {formulation:?}: max |stress| = {smax:e}");
         assert!(
-            smax < 1e-9 * 70000.0,
-            "{id} {formulation:?}: max |stress| = {smax:e}"
+            out.report.total_iterations <= 1,
+            "{id} {formulation:?}: {} iterations",
+            out.report.total_iterations
         );
-        assert!(umax <= 0.1, "{id} {formulation:?}: max |u| = {umax:e}");
     }
 }

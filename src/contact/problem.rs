@@ -195,6 +195,10 @@ impl Nonlinear for ContactProblem<'_> {
         self.solid.imposed_change(t0, t1)
     }
 
+    fn unloaded(&self, t: f64) -> bool {
+        self.solid.unloaded(t)
+    }
+
     fn active_set_resolves(&self) -> bool {
         self.pairs.iter().all(|p| p.active_set_resolves())
     }

@@ -118,6 +118,16 @@ impl<'m> SolidProblem<'m> {
         a != b
     }
 
+    /// Whether nothing loads the bodies at time t: no force, no imposed value, no relation
+    /// right-hand side (the bodies at rest are then in equilibrium).
+    pub fn unloaded(&self, t: f64) -> bool {
+        let mut f = vec![0.0; self.u.len()];
+        self.loading.forces_at(t, &mut f);
+        let mut imposed = vec![];
+        self.loading.imposed_at(t, &self.asm.dofs, &mut imposed);
+        f.iter().chain(&imposed).all(|&v| v == 0.0)
+    }
+
     /// The full displacement of the free unknowns `x` at time t.
     pub fn displacement(&mut self, x: &[f64], t: f64, u: &mut [f64]) {
         self.set_time(t);
@@ -278,5 +288,8 @@ impl Nonlinear for SolidProblem<'_> {
     }
     fn imposed_change(&self, t0: f64, t1: f64) -> bool {
         self.imposed_change(t0, t1)
+    }
+    fn unloaded(&self, t: f64) -> bool {
+        self.unloaded(t)
     }
 }
