@@ -174,7 +174,7 @@ fn bad_contact_entries_are_rejected() {
     assert!(e.starts_with("[[contact]] 1 (Arc on Bottom): slave surface: group 'Arc' is not in the mesh; groups are: Body"), "{e}");
     assert_eq!(
         contact_error("pen.toml", &format!("{pair}\npenalty = 1e4")),
-        "[[contact]] 1 (Top on Bottom): penalty and exclude go with formulation = \"node-to-segment\""
+        "[[contact]] 1 (Top on Bottom): penalty goes with formulation = \"node-to-segment\""
     );
     assert_eq!(
         contact_error(

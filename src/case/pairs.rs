@@ -253,9 +253,9 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                  contact point per slave node)"
             )));
         }
-        if !node_to_segment && (c.penalty.is_some() || !c.exclude.is_empty()) {
+        if !node_to_segment && c.penalty.is_some() {
             return Err(Error::model(format!(
-                "{what}: penalty and exclude go with formulation = \"node-to-segment\""
+                "{what}: penalty goes with formulation = \"node-to-segment\""
             )));
         }
         if let Some(k) = c.penalty {
@@ -300,6 +300,25 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 mortar.compliance = (of(&mortar.slave), of(&mortar.master));
                 // a micro-strain of the softest body: below it a pressure is round-off
                 mortar.pressure_floor = 1e-6 * e_min;
+                // exclude names slave nodes; where the multipliers went to the master
+                // surface (the coarser one), the multiplier node at the same place
+                let nodes = group_nodes(mesh, &c.exclude, &what, "exclude")?;
+                for &n in &nodes {
+                    let k = match multiplier_indices(mesh, &mortar, &[n]) {
+                        Ok(k) if !k.is_empty() => k[0],
+                        _ => {
+                            return Err(Error::model(format!(
+                                "{what}: exclude: node {} is not a node of the surface that \
+                                 carries the mortar multipliers, nor at the place of one (the \
+                                 multipliers are on '{}', the coarser surface)",
+                                n + 1,
+                                mortar.slave.group
+                            )))
+                        }
+                    };
+                    mortar.contact_excluded.push(k);
+                    mortar.excluded_nodes.push(mortar.mult_nodes[k]);
+                }
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
                     let nodes = group_nodes(mesh, &c.friction_exclude, &what, "friction_exclude")?;

@@ -380,7 +380,7 @@ pub struct ContactSpec {
     /// non-penetration by multipliers.
     #[serde(default)]
     pub penalty: Option<f64>,
-    /// node-to-segment: node groups excluded from contact.
+    /// Node groups of slave nodes excluded from contact (no pressure there).
     #[serde(default)]
     pub exclude: Vec<String>,
     /// point-to-segment, node-to-segment: the master normal on straight cells, "smoothed"

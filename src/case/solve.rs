@@ -365,16 +365,11 @@ fn supported_slave_nodes(
             !p.excluded_nodes().contains(&n) && fixed(n) && nearest(n).is_some_and(fixed)
         });
         if let Some(&n) = held {
-            let exclude = if c.formulation == "node-to-segment" {
-                ", or list it in exclude"
-            } else {
-                ""
-            };
             return Err(Error::model(format!(
                 "[[contact]] {} ({} on {}): slave node {} has both displacements imposed, and \
                  so has the master node it faces: its contact constraint acts on nothing; \
-                 impose one component only, or leave the node out of the slave surface\
-                 {exclude}",
+                 impose one component only, leave the node out of the slave surface, or \
+                 list it in exclude",
                 i + 1,
                 c.slave,
                 c.master,

@@ -207,7 +207,7 @@ impl PointToSegment {
         mesh: &Mesh,
         slave: Surface,
         master: Surface,
-        opts: Options,
+        mut opts: Options,
         model: Modelisation,
         thickness: f64,
     ) -> Self {
@@ -287,13 +287,16 @@ impl PointToSegment {
                     Some(share) => share[a],
                     None => w * t[0].hypot(t[1]) * measure_at(p),
                 };
+                // (the nodal rule's point at an excluded node)
+                let at_excluded = opts.integration == Integration::Nodal
+                    && opts.contact_excluded.contains(&mesh.cell_nodes(c)[a]);
                 points.push(Point {
                     cell: ic,
                     xi,
                     omega,
                     active: false,
                     excluded: false,
-                    left_out: false,
+                    left_out: at_excluded,
                     master: 0,
                     xi_m: 0.0,
                 });
@@ -358,11 +361,21 @@ impl PointToSegment {
         let mult_coords: Vec<[f64; 2]> = mult_nodes.iter().map(|&n| mesh.coords[n]).collect();
         // reported from the neighbours: a node on the axis, or of no weight
         let on_axis = super::axis::on_axis(&mult_coords, model == Modelisation::Axisymmetric);
-        let reported_from_neighbours: Vec<bool> = weightless
-            .iter()
-            .zip(&on_axis)
-            .map(|(a, b)| *a || *b)
+        let is_excluded = |k: usize| opts.contact_excluded.contains(&mult_nodes[k]);
+        let reported_from_neighbours: Vec<bool> = (0..mult_nodes.len())
+            .map(|k| (weightless[k] || on_axis[k]) && !is_excluded(k))
             .collect();
+        // exclude (point-to-segment): the node's multiplier is held at zero by its own row,
+        // as a weightless one's, and no point writes its rows (see `contribute`); without
+        // contact it has no friction either
+        let mut weightless = weightless;
+        if !opts.node_to_segment {
+            for (k, w) in weightless.iter_mut().enumerate() {
+                *w |= is_excluded(k);
+            }
+            let excluded = opts.contact_excluded.clone();
+            opts.friction_excluded.extend(excluded);
+        }
         let n_points = points.len();
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         PointToSegment {
@@ -742,9 +755,13 @@ impl PointToSegment {
                 b.push((2 * n, -e.nm[a] * e.normal[0]));
                 b.push((2 * n + 1, -e.nm[a] * e.normal[1]));
             }
+            // (an excluded node's multiplier stays zero by its own row)
             let mults: Vec<(usize, f64)> = snodes
                 .iter()
                 .enumerate()
+                .filter(|(_, n)| {
+                    self.opts.node_to_segment || !self.opts.contact_excluded.contains(n)
+                })
                 .map(|(a, n)| (self.mult_of[n], e.ns[a]))
                 .collect();
             let w = p.omega;

@@ -195,6 +195,8 @@ impl Nonlinear for ContactProblem<'_> {
         self.solid.imposed_change(t0, t1)
     }
 
+    // (bodies without contact go through Newton: its factorisation tells a model with a
+    // rigid-body mode; with contact, bodies held by contact alone are free at rest)
     fn unloaded(&self, t: f64) -> bool {
         self.solid.unloaded(t)
     }

@@ -289,7 +289,4 @@ impl Nonlinear for SolidProblem<'_> {
     fn imposed_change(&self, t0: f64, t1: f64) -> bool {
         self.imposed_change(t0, t1)
     }
-    fn unloaded(&self, t: f64) -> bool {
-        self.unloaded(t)
-    }
 }

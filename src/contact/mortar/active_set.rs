@@ -169,10 +169,14 @@ impl Mortar {
     /// master segments. A node under the master's end (the corner of a block on a longer
     /// foundation that carries the multipliers) sits at half, where the iterates' tiny
     /// motions of the corner flip it, and its activity with it (a 2-cycle at any step
-    /// size): an active one there goes on facing down to 0.4.
+    /// size): an active one there goes on facing down to 0.4. A node of `exclude` faces
+    /// nothing (it never takes contact).
     pub(super) fn facing(&self, mesh: &Mesh, u: &[f64], cov: &[f64], d: &[f64]) -> Vec<bool> {
         (0..cov.len())
             .map(|k| {
+                if self.contact_excluded.contains(&k) {
+                    return false;
+                }
                 let held = self.active.get(k).copied().unwrap_or(false)
                     && self.under_master_end(mesh, u, k);
                 cov[k] > if held { 0.4 } else { 0.5 } * d[k]

@@ -98,6 +98,9 @@ pub struct Mortar {
     /// nodes excluded from friction.
     pub friction: Option<f64>,
     pub friction_excluded: Vec<usize>,
+    /// The multiplier indices of `exclude` (never in contact), and their nodes.
+    pub contact_excluded: Vec<usize>,
+    pub excluded_nodes: Vec<usize>,
     /// The smallest pressure scale of the constraint residual (when every multiplier is
     /// about zero, e.g. a contact that has opened, the rows are measured against this).
     pub pressure_floor: f64,
@@ -204,6 +207,8 @@ impl Mortar {
             offset: vec![],
             friction: None,
             friction_excluded: vec![],
+            contact_excluded: vec![],
+            excluded_nodes: vec![],
             pressure_floor: 0.0,
             u_start: vec![0.0; 2 * mesh.num_nodes()],
             law: vec![],
@@ -559,6 +564,9 @@ impl ContactPair for Mortar {
 
     fn multiplier_nodes(&self) -> &[usize] {
         &self.mult_nodes
+    }
+    fn excluded_nodes(&self) -> &[usize] {
+        &self.excluded_nodes
     }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)
