@@ -179,3 +179,39 @@ fn zero_load_converges_to_the_unloaded_state() {
         );
     }
 }
+
+#[test]
+fn a_failure_names_the_nodes_whose_status_cycles_and_the_largest_residual() {
+    // Issue 20 item 5: SSNP154 D with 3 iterations per step cannot converge; the message
+    // says which contact nodes kept changing status (slave nodes) and where the residual is.
+    use tribo::case::{run, ssnp154};
+    let spec = ssnp154::builtin_mesh(true, 3.0);
+    let mesh = build_mesh(&spec, std::path::Path::new("")).unwrap();
+    let mut c = ssnp154::contact_case("D", spec, None);
+    c.solver.max_iterations = 3;
+    let e = run(&c, &mesh, false)
+        .err()
+        .expect("3 iterations per step are too few")
+        .to_string();
+    println!("{e}");
+    let after = e
+        .split("contact statuses kept changing at node")
+        .nth(1)
+        .map(|a| a.trim_start_matches('s').trim_start())
+        .unwrap_or_else(|| panic!("no cycling nodes named: {e}"));
+    let first: usize = after
+        .split(' ')
+        .next()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no node number: {e}"));
+    let slave = mesh.node_group("Bottom_C").unwrap();
+    assert!(
+        slave.contains(&(first - 1)),
+        "node {first} is not a slave node: {e}"
+    );
+    assert!(
+        e.contains("the largest out-of-balance force is at node "),
+        "{e}"
+    );
+    assert!(e.contains("may help"), "{e}");
+}

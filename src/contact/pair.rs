@@ -23,6 +23,11 @@ pub trait ContactPair {
     );
     /// Updates statuses (and pairing) from the iterate; returns how many changed.
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
+    /// Slave nodes whose status changed in the last `update_status` (for failure messages:
+    /// where the statuses cycle).
+    fn changed_nodes(&self) -> Vec<usize> {
+        vec![]
+    }
     /// A hash of the pair's discrete statuses (active set, friction branches).
     fn status_signature(&self) -> u64 {
         0

@@ -133,6 +133,8 @@ pub struct PointToSegment {
     pub mult_nodes: Vec<usize>,
     master_cells_of_node: HashMap<usize, Vec<usize>>,
     saved_status: Vec<bool>,
+    /// Slave nodes (nearest the points) whose status the last `update_status` changed.
+    changed: Vec<usize>,
     /// Per slave cell, the master cells it may couple with: those near it initially, plus
     /// any it has been paired with since. The matrix pattern covers all of them, so it only
     /// changes when a point pairs outside this set.
@@ -387,6 +389,7 @@ impl PointToSegment {
             mult_nodes,
             master_cells_of_node,
             saved_status: vec![false; n_points],
+            changed: vec![],
             candidates,
             candidates_generation: 0,
             pattern_sent: std::cell::Cell::new(None),
@@ -997,14 +1000,30 @@ impl PointToSegment {
     pub fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         self.pair_all(mesh, u);
         let mut changes = 0;
+        self.changed.clear();
         for i in 0..self.points.len() {
             let e = self.eval(mesh, u, i);
             let lp = self.point_lambda(mesh, i, &e.ns, lam);
             let p = &self.points[i];
             let active = !p.excluded && lp - self.opts.rho * e.d < 0.0;
             if active != p.active {
+                let cell = p.cell;
                 changes += 1;
                 self.points[i].active = active;
+                // (the slave node nearest the point)
+                let (a, _) =
+                    e.ns.iter().enumerate().fold(
+                        (0, f64::MIN),
+                        |b, (a, &v)| {
+                            if v > b.1 {
+                                (a, v)
+                            } else {
+                                b
+                            }
+                        },
+                    );
+                self.changed
+                    .push(mesh.cell_nodes(self.slave.cells[cell])[a]);
             }
         }
         changes
@@ -1315,6 +1334,9 @@ impl super::pair::ContactPair for PointToSegment {
     }
     fn excluded_nodes(&self) -> &[usize] {
         &self.opts.contact_excluded
+    }
+    fn changed_nodes(&self) -> Vec<usize> {
+        self.changed.clone()
     }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)

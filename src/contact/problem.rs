@@ -165,6 +165,14 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn changed_nodes(&self) -> Vec<usize> {
+        self.pairs.iter().flat_map(|p| p.changed_nodes()).collect()
+    }
+
+    fn residual_location(&self, r: &[f64]) -> Option<String> {
+        self.solid.residual_location(r)
+    }
+
     fn status_signature(&self) -> u64 {
         use std::hash::{Hash, Hasher};
         let mut h = std::collections::hash_map::DefaultHasher::new();

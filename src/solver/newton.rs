@@ -55,6 +55,15 @@ pub trait Nonlinear {
     fn update_status_linearised(&mut self, _x: &[f64], _lambda: f64) -> Result<Option<usize>> {
         Ok(None)
     }
+    /// Nodes whose status the last `update_status` changed (for failure messages).
+    fn changed_nodes(&self) -> Vec<usize> {
+        vec![]
+    }
+    /// Where the residual r (over the unknowns) is largest, in the user's terms (a node and
+    /// a component), for failure messages.
+    fn residual_location(&self, _r: &[f64]) -> Option<String> {
+        None
+    }
     /// A hash of the discrete statuses (to recognise a cycle of active-set re-solves).
     fn status_signature(&self) -> u64 {
         0
@@ -243,6 +252,49 @@ fn rest_solution(
     Ok(None)
 }
 
+/// What a failure message adds about an unconverged step: the nodes whose contact status
+/// kept changing (with how often), where the residual r is largest, and what may help.
+fn diagnosis(
+    problem: &dyn Nonlinear,
+    r: &[f64],
+    changes: &std::collections::BTreeMap<usize, usize>,
+) -> String {
+    let mut out = String::new();
+    let mut cycling: Vec<(usize, usize)> = changes
+        .iter()
+        .filter(|c| *c.1 >= 2)
+        .map(|(&n, &k)| (n, k))
+        .collect();
+    cycling.sort_by(|a, b| b.1.cmp(&a.1).then(a.0.cmp(&b.0)));
+    if !cycling.is_empty() {
+        let named: Vec<String> = cycling
+            .iter()
+            .take(6)
+            .map(|(n, k)| format!("{} ({k}×)", n + 1))
+            .collect();
+        let more = cycling.len().saturating_sub(6);
+        out += &format!(
+            "; contact statuses kept changing at node{} {}{}",
+            if cycling.len() > 1 { "s" } else { "" },
+            named.join(", "),
+            if more > 0 {
+                format!(" and {more} more")
+            } else {
+                String::new()
+            }
+        );
+    }
+    if let Some(at) = problem.residual_location(r) {
+        out += &format!("; the largest out-of-balance force is at {at}");
+    }
+    out += if cycling.is_empty() {
+        "; more load steps ([solver] steps) or a larger max_iterations may help"
+    } else {
+        "; more load steps ([solver] steps), or a finer mesh where the statuses change, may help"
+    };
+    out
+}
+
 /// Solves the problem from its current state through the step ends.
 pub fn solve(
     problem: &mut dyn Nonlinear,
@@ -369,6 +421,8 @@ pub fn solve_into(
         // not count toward `max_iterations` (each point has at most
         // MAX_LINEARISED_RESOLVES, or MAX_RESOLVES, of them)
         let mut newton_its = 0;
+        // how often each node's contact status changed in this attempt (failure messages)
+        let mut status_counts = std::collections::BTreeMap::<usize, usize>::new();
         // (at rest with nothing loading the bodies: that is the step's solution)
         let rest = rest_solution(problem, &x, lambda, &mut r, &meets_tolerance)?;
         for it in 0.. {
@@ -508,7 +562,8 @@ pub fn solve_into(
                 .copied()
                 .fold(f64::INFINITY, f64::min);
             if !resolve && residuals.len() > 3 && rel > 1e3 * best && rel >= recent {
-                failure = Some(format!("divergence (residual {rel:.1e})"));
+                let why = diagnosis(problem, &r, &status_counts);
+                failure = Some(format!("divergence (residual {rel:.1e}){why}"));
                 break;
             }
             // Converged: residual below the tolerance, or (with no load to measure it
@@ -529,8 +584,9 @@ pub fn solve_into(
             }
             if newton_its >= settings.max_iterations {
                 failure = Some(format!(
-                    "no convergence in {} iterations",
-                    settings.max_iterations
+                    "no convergence in {} iterations (residual {rel:.1e}){}",
+                    settings.max_iterations,
+                    diagnosis(problem, &r, &status_counts)
                 ));
                 break;
             }
@@ -628,6 +684,11 @@ pub fn solve_into(
             linearised_resolves = 0;
             linearised_seen.clear();
             changes = problem.update_status(&x, lambda)?;
+            if changes > 0 {
+                for n in problem.changed_nodes() {
+                    *status_counts.entry(n).or_default() += 1;
+                }
+            }
             step.iterations.last_mut().unwrap().status_changes = changes;
             if settings.verbose && changes > 0 {
                 eprintln!("                        {changes} contact status changes");

@@ -128,6 +128,24 @@ impl<'m> SolidProblem<'m> {
         f.iter().chain(&imposed).all(|&v| v == 0.0)
     }
 
+    /// The node and component of the largest displacement-row residual in r (over the
+    /// free unknowns first), as a failure message says it.
+    pub fn residual_location(&self, r: &[f64]) -> Option<String> {
+        let nf = self.num_free();
+        let (k, v) = r[..nf.min(r.len())]
+            .iter()
+            .enumerate()
+            .max_by(|a, b| a.1.abs().total_cmp(&b.1.abs()))?;
+        let d = self
+            .asm
+            .dofs
+            .roles
+            .iter()
+            .position(|role| matches!(role, Role::Free(i) if *i == k))?;
+        let c = ["dx", "dy"][d % 2];
+        Some(format!("node {} ({c}, {:.1e})", d / 2 + 1, v.abs()))
+    }
+
     /// The full displacement of the free unknowns `x` at time t.
     pub fn displacement(&mut self, x: &[f64], t: f64, u: &mut [f64]) {
         self.set_time(t);

@@ -101,6 +101,8 @@ pub struct Mortar {
     /// The multiplier indices of `exclude` (never in contact), and their nodes.
     pub contact_excluded: Vec<usize>,
     pub excluded_nodes: Vec<usize>,
+    /// Multiplier nodes whose status the last `update_status` changed.
+    changed: Vec<usize>,
     /// The smallest pressure scale of the constraint residual (when every multiplier is
     /// about zero, e.g. a contact that has opened, the rows are measured against this).
     pub pressure_floor: f64,
@@ -209,6 +211,7 @@ impl Mortar {
             friction_excluded: vec![],
             contact_excluded: vec![],
             excluded_nodes: vec![],
+            changed: vec![],
             pressure_floor: 0.0,
             u_start: vec![0.0; 2 * mesh.num_nodes()],
             law: vec![],
@@ -470,6 +473,7 @@ impl ContactPair for Mortar {
             }
         }
         let mut changes = 0;
+        let mut changed = vec![];
         if near != self.candidates {
             changes += 1;
             add_to_pattern(&mut self.pattern_candidates, &near);
@@ -481,6 +485,7 @@ impl ContactPair for Mortar {
             if active != self.active[j] {
                 changes += 1;
                 self.active[j] = active;
+                changed.push(self.mult_nodes[j]);
             }
         }
         if let Some(mu) = self.friction {
@@ -500,10 +505,16 @@ impl ContactPair for Mortar {
                     }
                     changes += 1;
                     self.law[j] = law;
+                    changed.push(self.mult_nodes[j]);
                 }
             }
         }
+        self.changed = changed;
         changes
+    }
+
+    fn changed_nodes(&self) -> Vec<usize> {
+        self.changed.clone()
     }
 
     fn status_signature(&self) -> u64 {
