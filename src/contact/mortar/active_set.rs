@@ -146,23 +146,33 @@ impl Mortar {
         for (k, o) in self.offset.iter().enumerate() {
             g[k] = -o;
         }
-        for ic in 0..self.slave.cells.len() {
-            let t = self.cell_terms(mesh, u, ic);
-            for (k, v) in t.gap {
+        let terms = self.all_cell_terms(mesh, u);
+        for t in &terms {
+            for &(k, v) in &t.gap {
                 g[k] += v;
             }
-            for (k, v) in t.dj {
+            for &(k, v) in &t.dj {
                 d[k] += v;
             }
-            for (k, v) in t.cover {
+            for &(k, v) in &t.cover {
                 cov[k] += v;
             }
-            for (k, v) in t.slip {
+            for &(k, v) in &t.slip {
                 sl[k] += v;
             }
         }
+        *self.terms_cache.lock().unwrap() = Some((u.to_vec(), terms));
         let facing = self.facing(mesh, u, &cov, &d);
         (g, d, facing, sl)
+    }
+
+    /// Every slave cell's terms at u (in parallel).
+    pub(super) fn all_cell_terms(&self, mesh: &Mesh, u: &[f64]) -> Vec<super::segments::CellTerms> {
+        use rayon::prelude::*;
+        (0..self.slave.cells.len())
+            .into_par_iter()
+            .map(|ic| self.cell_terms(mesh, u, ic))
+            .collect()
     }
 
     /// Whether each slave node faces the master: more than half of its ∫ N_j covered by

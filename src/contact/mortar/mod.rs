@@ -48,7 +48,6 @@ use crate::mesh::Mesh;
 use active_set::row_weights;
 use friction::Branch;
 use linearisation::linear_tangent;
-use rayon::prelude::*;
 use segments::CellTerms;
 use std::collections::HashMap;
 
@@ -132,6 +131,10 @@ pub struct Mortar {
     /// Large kinematics: the constraints linearised at the last evaluation (for the
     /// active-set iterations at a fixed linearisation, `linearised_status`).
     linearisation: std::sync::Mutex<Option<active_set::Linearisation>>,
+    /// The cells' terms `update_status` computed at its iterate (u, terms): Newton
+    /// evaluates the residual at that same iterate next, which takes them instead of
+    /// computing them again.
+    terms_cache: std::sync::Mutex<Option<(Vec<f64>, Vec<CellTerms>)>>,
 }
 
 /// Adds each slave cell's `found` master cells to its pattern candidates.
@@ -223,6 +226,7 @@ impl Mortar {
             mult_coords: vec![],
             compliance: (vec![], vec![]),
             linearisation: Default::default(),
+            terms_cache: Default::default(),
         };
         m.compliance = (
             vec![1.0; m.slave.cells.len()],
@@ -313,10 +317,11 @@ impl ContactPair for Mortar {
     ) {
         let ndof = 2 * mesh.num_nodes();
         let nm = self.mult_nodes.len();
-        let terms: Vec<CellTerms> = (0..self.slave.cells.len())
-            .into_par_iter()
-            .map(|ic| self.cell_terms(mesh, u, ic))
-            .collect();
+        let cached = self.terms_cache.lock().unwrap().take();
+        let terms: Vec<CellTerms> = match cached {
+            Some((u0, terms)) if u0 == u => terms,
+            _ => self.all_cell_terms(mesh, u),
+        };
         let (mut g, mut d) = (vec![0.0; nm], vec![0.0; nm]);
         for (j, o) in self.offset.iter().enumerate() {
             g[j] = -o;
@@ -532,6 +537,8 @@ impl ContactPair for Mortar {
     }
 
     fn commit(&mut self, u: &[f64]) {
+        // (the terms measure slips from the step start, which moves)
+        self.terms_cache.lock().unwrap().take();
         self.switches.fill(0);
         if self.saved_candidates != self.candidates {
             self.saved_candidates = self.candidates.clone();
@@ -542,6 +549,7 @@ impl ContactPair for Mortar {
     }
 
     fn restore(&mut self) {
+        self.terms_cache.lock().unwrap().take();
         if self.candidates != self.saved_candidates {
             self.candidates = self.saved_candidates.clone();
         }
