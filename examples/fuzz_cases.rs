@@ -5,7 +5,8 @@
 //! mutant as `tribo run CASE -o DIR` does (load, checks, mesh, solve, output) in a child
 //! process: one thread, 2 GiB of address space, `--limit` seconds (default 5). A child
 //! that panics (status 101) or dies of a signal is a finding: its input is saved to the
-//! temp folder. A child over its time is killed and counted as slow, not as a finding.
+//! temp folder. A child over its time is killed and counted as slow, not as a finding
+//! (the first 20 are saved as `fuzz-case-slow-N.toml`).
 //! The report: inputs tried, accepted, refused with an error, slow, and panics/signals.
 
 use std::io::Write;
@@ -32,19 +33,63 @@ impl Rng {
 
 /// Values that break numbers: non-finite, extreme, negative, zero, wrong type.
 const NUMBERS: &[&str] = &[
-    "nan", "inf", "-inf", "1e308", "-1e308", "1e9", "1e18", "-1", "-1.5", "0", "0.0", "-0.0",
-    "1e-308", "5e-324", "18446744073709551615", "9223372036854775807", "4294967297", "0.5",
-    "2147483648", "100000", "1e6", "3", "-3",
+    "nan",
+    "inf",
+    "-inf",
+    "1e308",
+    "-1e308",
+    "1e9",
+    "1e18",
+    "-1",
+    "-1.5",
+    "0",
+    "0.0",
+    "-0.0",
+    "1e-308",
+    "5e-324",
+    "18446744073709551615",
+    "9223372036854775807",
+    "4294967297",
+    "0.5",
+    "2147483648",
+    "100000",
+    "1e6",
+    "3",
+    "-3",
 ];
 /// Values of another type than the one a key expects.
 const OTHERS: &[&str] = &[
-    "\"x\"", "\"\"", "true", "[]", "[1, 2]", "[1, 2, 3]", "[nan, nan]", "{}", "{ a = 1 }",
-    "\"../../x\"", "\"/tmp\"", "[[0, 0], [1, nan]]", "[[0, 0]]", "1979-05-27",
+    "\"x\"",
+    "\"\"",
+    "true",
+    "[]",
+    "[1, 2]",
+    "[1, 2, 3]",
+    "[nan, nan]",
+    "{}",
+    "{ a = 1 }",
+    "\"../../x\"",
+    "\"/tmp\"",
+    "[[0, 0], [1, nan]]",
+    "[[0, 0]]",
+    "1979-05-27",
 ];
 const UNKNOWN_KEYS: &[&str] = &[
-    "foo = 1", "nx = 3", "size = 0.1", "thickness = 2.0", "friction = 0.1", "penalty = 1e3",
-    "function = \"f\"", "group = \"Body\"", "dx = 0.0", "[extra]", "[[contact]]",
-    "[[material]]", "[solver]", "steps = 1e9", "[output.hertz]",
+    "foo = 1",
+    "nx = 3",
+    "size = 0.1",
+    "thickness = 2.0",
+    "friction = 0.1",
+    "penalty = 1e3",
+    "function = \"f\"",
+    "group = \"Body\"",
+    "dx = 0.0",
+    "[extra]",
+    "[[contact]]",
+    "[[material]]",
+    "[solver]",
+    "steps = 1e9",
+    "[output.hertz]",
 ];
 
 fn is_number_start(b: u8) -> bool {
@@ -63,8 +108,7 @@ fn numbers(line: &str) -> Vec<(usize, usize)> {
     while i < b.len() {
         if b[i] == b'"' {
             in_str = !in_str;
-        } else if !in_str && is_number_start(b[i]) && (i == 0 || !b[i - 1].is_ascii_alphabetic())
-        {
+        } else if !in_str && is_number_start(b[i]) && (i == 0 || !b[i - 1].is_ascii_alphabetic()) {
             let s = i;
             while i < b.len()
                 && (b[i].is_ascii_alphanumeric() || matches!(b[i], b'.' | b'-' | b'+' | b'_'))
@@ -96,7 +140,7 @@ fn mutate(seed: &str, all: &[String], rng: &mut Rng) -> String {
                     .collect();
                 if !spans.is_empty() {
                     let (l, s, e) = *rng.pick(&spans);
-                    let v: &str = *rng.pick(NUMBERS);
+                    let v = *rng.pick(NUMBERS);
                     lines[l].replace_range(s..e, v);
                 }
             }
@@ -199,7 +243,10 @@ fn main() {
     // The mutants run beside copies of the corpus's mesh files (they name them relatively).
     let work = std::env::temp_dir().join(format!("fuzz-cases-{}", std::process::id()));
     std::fs::create_dir_all(&work).unwrap();
-    for e in std::fs::read_dir(root.join("tests/corpus/cases")).unwrap().flatten() {
+    for e in std::fs::read_dir(root.join("tests/corpus/cases"))
+        .unwrap()
+        .flatten()
+    {
         if e.path().extension().is_none_or(|x| x != "toml") {
             std::fs::copy(e.path(), work.join(e.file_name())).unwrap();
         }
@@ -253,7 +300,14 @@ fn main() {
             let _ = e.read_to_string(&mut stderr);
         }
         match status {
-            None => slow += 1,
+            None => {
+                slow += 1;
+                // kept for a look (a slow input is no finding, but may show a missing check)
+                if slow <= 20 {
+                    let f = std::env::temp_dir().join(format!("fuzz-case-slow-{slow}.toml"));
+                    let _ = std::fs::write(&f, &text);
+                }
+            }
             Some(s) if s.code() == Some(0) => ran += 1,
             Some(s) if s.code() == Some(2) => refused += 1,
             Some(s) => {

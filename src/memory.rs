@@ -57,9 +57,8 @@ pub fn solve_bytes(m: &Model) -> u64 {
 /// Estimated peak bytes of making a mesh of `nodes` nodes and `cells` cells of up to
 /// `nodes_per_cell` nodes (coordinates, connectivity, groups, the builders' maps).
 pub fn mesh_bytes(nodes: u64, cells: u64, nodes_per_cell: usize) -> u64 {
-    BASE.saturating_add(nodes.saturating_mul(180)).saturating_add(
-        cells.saturating_mul(8 * nodes_per_cell as u64 + 120),
-    )
+    BASE.saturating_add(nodes.saturating_mul(180))
+        .saturating_add(cells.saturating_mul(8 * nodes_per_cell as u64 + 120))
 }
 
 /// Bytes available to this process, and where the figure comes from.
@@ -82,7 +81,8 @@ pub fn available() -> Option<(u64, &'static str)> {
             .ok()
     };
     // "max" (no limit) does not parse: no cgroup figure then
-    let cgroup = read("memory.max").map(|max| max.saturating_sub(read("memory.current").unwrap_or(0)));
+    let cgroup =
+        read("memory.max").map(|max| max.saturating_sub(read("memory.current").unwrap_or(0)));
     match (avail, cgroup) {
         (Some(a), Some(c)) if c < a => Some((c, "the cgroup memory limit")),
         (Some(a), _) => Some((a, "MemAvailable")),
@@ -102,7 +102,7 @@ fn parse_size(s: &str) -> Option<u64> {
         _ => (s, 1),
     };
     let v: f64 = num.trim().parse().ok()?;
-    (v.is_finite() && v >= 0.0).then(|| (v * mult as f64) as u64)
+    (v.is_finite() && v >= 0.0).then_some((v * mult as f64) as u64)
 }
 
 /// Bytes for people: "1.5 GB", "230 MB".

@@ -47,7 +47,12 @@ impl Set<'_> {
     pub fn sub_ok(&mut self, name: &str, from: &str, to: &str, nodes: usize, cells: usize) {
         assert!(self.base.contains(from), "{name}: '{from}' not in the base");
         let t = self.base.replacen(from, to, 1);
-        self.push(name, t.into_bytes(), "ok", &format!("{nodes} nodes, {cells} cells"));
+        self.push(
+            name,
+            t.into_bytes(),
+            "ok",
+            &format!("{nodes} nodes, {cells} cells"),
+        );
     }
     /// The base cut just after the first `after` (its end included).
     pub fn cut(&mut self, name: &str, after: &str, detail: &str) {
@@ -79,13 +84,15 @@ fn main() {
     let n = names.len();
     names.dedup();
     assert_eq!(n, names.len(), "two entries share a name");
-    if dir.exists() {
-        std::fs::remove_dir_all(&dir).unwrap();
+    // the files are rewritten whole; the README stays
+    let files = dir.join("files");
+    if files.exists() {
+        std::fs::remove_dir_all(&files).unwrap();
     }
-    std::fs::create_dir_all(dir.join("files")).unwrap();
+    std::fs::create_dir_all(&files).unwrap();
     let mut table = String::from("file\texpect\tdetail\n");
     for e in &all {
-        std::fs::write(dir.join("files").join(&e.name), &e.bytes).unwrap();
+        std::fs::write(files.join(&e.name), &e.bytes).unwrap();
         table.push_str(&format!("{}\t{}\t{}\n", e.name, e.expect, e.detail));
     }
     std::fs::write(dir.join("expected.tsv"), table).unwrap();

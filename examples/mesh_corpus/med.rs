@@ -58,19 +58,51 @@ pub fn entries() -> Vec<Entry> {
         f(&mut m);
         bytes(&m)
     };
-    s.bytes("x_nan", with(&|m| m.coords[1][0] = f64::NAN), "node 2 has a non-finite coordinate");
-    s.bytes("y_inf", with(&|m| m.coords[2][1] = f64::INFINITY), "node 3 has a non-finite coordinate");
-    s.bytes("zero_area", with(&|m| m.coords[2] = [1.0, 0.0]), "(Quad4) is");
-    s.bytes("bowtie", with(&|m| m.coords.swap(2, 3)), "cell 1 (Quad4) is inverted or tangled");
+    s.bytes(
+        "x_nan",
+        with(&|m| m.coords[1][0] = f64::NAN),
+        "node 2 has a non-finite coordinate",
+    );
+    s.bytes(
+        "y_inf",
+        with(&|m| m.coords[2][1] = f64::INFINITY),
+        "node 3 has a non-finite coordinate",
+    );
+    s.bytes(
+        "zero_area",
+        with(&|m| m.coords[2] = [1.0, 0.0]),
+        "(Quad4) is",
+    );
+    s.bytes(
+        "bowtie",
+        with(&|m| m.coords.swap(2, 3)),
+        "cell 1 (Quad4) is inverted or tangled",
+    );
     let mut z = square_with(true);
     z.coords[4] = [1e-14, 0.0];
     s.bytes("seg_zero_length", bytes(&z), "(Seg2) is of zero length");
     let at = quad_conn(&good);
     for (name, v, detail) in [
-        ("conn_out_of_range", 9i64, "MAI/QU4/NOD: cell 1 refers to node 9, the mesh has 4 nodes"),
-        ("conn_zero", 0, "MAI/QU4/NOD: cell 1 refers to node 0, the mesh has 4 nodes"),
-        ("conn_negative", -3, "MAI/QU4/NOD: cell 1 refers to node -3, the mesh has 4 nodes"),
-        ("conn_huge", i64::MAX, "MAI/QU4/NOD: cell 1 refers to node 9223372036854775807, the mesh has 4 nodes"),
+        (
+            "conn_out_of_range",
+            9i64,
+            "MAI/QU4/NOD: cell 1 refers to node 9, the mesh has 4 nodes",
+        ),
+        (
+            "conn_zero",
+            0,
+            "MAI/QU4/NOD: cell 1 refers to node 0, the mesh has 4 nodes",
+        ),
+        (
+            "conn_negative",
+            -3,
+            "MAI/QU4/NOD: cell 1 refers to node -3, the mesh has 4 nodes",
+        ),
+        (
+            "conn_huge",
+            i64::MAX,
+            "MAI/QU4/NOD: cell 1 refers to node 9223372036854775807, the mesh has 4 nodes",
+        ),
     ] {
         let mut b = good.clone();
         b[at..at + 8].copy_from_slice(&v.to_le_bytes());
@@ -82,13 +114,25 @@ pub fn entries() -> Vec<Entry> {
     s.bytes("conn_repeated", rep, "cell 1 (Quad4) lists node");
     s.bytes("cut_8", good[..8].to_vec(), "unreadable HDF5 file");
     let n = good.len();
-    for (name, len) in [("cut_100", 100), ("cut_half", n / 2), ("cut_last_byte", n - 1)] {
-        s.bytes(name, good[..len].to_vec(), &format!("truncated HDF5 file: {len} bytes, its superblock says {n}"));
+    for (name, len) in [
+        ("cut_100", 100),
+        ("cut_half", n / 2),
+        ("cut_last_byte", n - 1),
+    ] {
+        s.bytes(
+            name,
+            good[..len].to_vec(),
+            &format!("truncated HDF5 file: {len} bytes, its superblock says {n}"),
+        );
     }
     let mut flip = good.clone();
     flip[9] ^= 0xff;
     s.bytes("superblock_damaged", flip, "unreadable HDF5 file");
     s.bytes("empty", vec![], "not an HDF5 file (no HDF5 signature)");
-    s.bytes("text", b"hello, not a mesh\n".to_vec(), "not an HDF5 file (no HDF5 signature)");
+    s.bytes(
+        "text",
+        b"hello, not a mesh\n".to_vec(),
+        "not an HDF5 file (no HDF5 signature)",
+    );
     s.out
 }

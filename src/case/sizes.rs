@@ -49,9 +49,7 @@ pub fn check_generated(spec: &MeshSpec) -> Result<()> {
 
 /// The model of a case on its mesh, before assembly.
 pub fn check_model(case: &CaseFile, mesh: &Mesh) -> Result<()> {
-    let quadratic = mesh
-        .cells_of_dim(2)
-        .any(|c| mesh.kind(c).is_quadratic());
+    let quadratic = mesh.cells_of_dim(2).any(|c| mesh.kind(c).is_quadratic());
     let contact = !case.contact.is_empty();
     let kept_states = if case.output.history {
         case.solver.steps.max(1)
@@ -90,8 +88,8 @@ mod tests {
             CellKind::Quad4,
             CellKind::Quad8,
         ] {
-            let m = crate::mesh::generate::rectangle([0.0, 0.0], 2.0, 1.0, 5, 3, kind, 0.0)
-                .unwrap();
+            let m =
+                crate::mesh::generate::rectangle([0.0, 0.0], 2.0, 1.0, 5, 3, kind, 0.0).unwrap();
             let (nodes, cells) = grid(5, 3, kind);
             assert_eq!(nodes as usize, m.num_nodes(), "{kind}");
             assert_eq!(cells as usize, m.cells_of_dim(2).count(), "{kind}");

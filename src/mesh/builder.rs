@@ -110,15 +110,16 @@ impl MeshBuilder {
             }
         }
         // a length below 1e-12 of the mesh's extent is zero
-        let (lo, hi) = self.mesh.coords.iter().fold(
-            ([f64::MAX; 2], [f64::MIN; 2]),
-            |(lo, hi), x| {
-                (
-                    [lo[0].min(x[0]), lo[1].min(x[1])],
-                    [hi[0].max(x[0]), hi[1].max(x[1])],
-                )
-            },
-        );
+        let (lo, hi) =
+            self.mesh
+                .coords
+                .iter()
+                .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+                    (
+                        [lo[0].min(x[0]), lo[1].min(x[1])],
+                        [hi[0].max(x[0]), hi[1].max(x[1])],
+                    )
+                });
         let tol = 1e-12 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
         for c in 0..self.mesh.num_cells() {
             if let Some(&bad) = self.mesh.cell_nodes(c).iter().find(|&&n| n >= n_nodes) {

@@ -84,7 +84,9 @@ fn end_of_file(b: &[u8]) -> Option<u64> {
     if *b.get(size_at)? != 8 {
         return None;
     }
-    Some(u64::from_le_bytes(b.get(eof_at..eof_at + 8)?.try_into().ok()?))
+    Some(u64::from_le_bytes(
+        b.get(eof_at..eof_at + 8)?.try_into().ok()?,
+    ))
 }
 
 struct Reader<'a> {

@@ -147,7 +147,12 @@ pub fn split(mesh: &Mesh, n: usize) -> Result<Mesh> {
         })
         .sum();
     let nodes = (mesh.num_nodes() as u64).saturating_mul(n2);
-    let per_cell = mesh.kind_counts().keys().map(|k| k.num_nodes()).max().unwrap_or(0);
+    let per_cell = mesh
+        .kind_counts()
+        .keys()
+        .map(|k| k.num_nodes())
+        .max()
+        .unwrap_or(0);
     crate::memory::check(
         &format!("mesh refine --split {n} (about {nodes} nodes, {cells} cells)"),
         crate::memory::mesh_bytes(nodes, cells, per_cell),

@@ -222,25 +222,17 @@ impl LinearSolver {
 
     fn factor_lu(&mut self, a: &SparseMatrix) -> Result<()> {
         if self.sym_lu.is_none() {
-            self.sym_lu = Some(
-                SymbolicLu::try_new(a.as_faer().symbolic())
-                    .map_err(|e| {
-                        memory_error(&e, a.n).unwrap_or_else(|| {
-                            Error::solve(format!("symbolic LU failed: {e:?}"))
-                        })
-                    })?,
-            );
+            self.sym_lu = Some(SymbolicLu::try_new(a.as_faer().symbolic()).map_err(|e| {
+                memory_error(&e, a.n)
+                    .unwrap_or_else(|| Error::solve(format!("symbolic LU failed: {e:?}")))
+            })?);
             self.symbolic_count += 1;
         }
         let sym = self.sym_lu.clone().unwrap();
-        self.lu = Some(
-            Lu::try_new_with_symbolic(sym, a.as_faer())
-                .map_err(|e| {
-                    memory_error(&e, a.n).unwrap_or_else(|| {
-                        Error::solve(format!("the system matrix is singular ({e:?})"))
-                    })
-                })?,
-        );
+        self.lu = Some(Lu::try_new_with_symbolic(sym, a.as_faer()).map_err(|e| {
+            memory_error(&e, a.n)
+                .unwrap_or_else(|| Error::solve(format!("the system matrix is singular ({e:?})")))
+        })?);
         Ok(())
     }
 

@@ -220,9 +220,7 @@ fn unpack(buf: &[u8], header64: bool, zlib: bool, expected: usize) -> Result<Vec
             .saturating_add(if last != 0 { last } else { block } as u64),
     };
     if announced > (expected as u64).saturating_mul(8) {
-        return Err(format!(
-            "{announced} bytes announced for {expected} values"
-        ));
+        return Err(format!("{announced} bytes announced for {expected} values"));
     }
     let mut out = vec![];
     for i in 0..blocks {
