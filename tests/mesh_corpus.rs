@@ -17,16 +17,21 @@ fn check(root: &std::path::Path, file: &str, expect: &str, detail: &str) -> Opti
         .expect("cannot run tribo");
     let stderr = String::from_utf8_lossy(&out.stderr);
     let Some(code) = out.status.code() else {
-        return Some(format!("{file}: killed by a signal ({:?}): {stderr}", out.status));
+        return Some(format!(
+            "{file}: killed by a signal ({:?}): {stderr}",
+            out.status
+        ));
     };
     match (expect, code) {
         (_, 101) => Some(format!("{file}: panicked: {stderr}")),
-        ("error", 2) if !stderr.contains(detail) => {
-            Some(format!("{file}: error '{}' lacks '{detail}'", stderr.trim()))
-        }
-        ("error", 2) if !stderr.contains(file) => {
-            Some(format!("{file}: error '{}' does not name the file", stderr.trim()))
-        }
+        ("error", 2) if !stderr.contains(detail) => Some(format!(
+            "{file}: error '{}' lacks '{detail}'",
+            stderr.trim()
+        )),
+        ("error", 2) if !stderr.contains(file) => Some(format!(
+            "{file}: error '{}' does not name the file",
+            stderr.trim()
+        )),
         ("error", 2) => None,
         ("error", c) => Some(format!("{file}: exit status {c}, expected 2: {stderr}")),
         ("ok", 0) => {
