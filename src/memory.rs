@@ -3,9 +3,10 @@
 //! beyond the memory available is an error naming the entry and the estimate, not an
 //! allocation abort or minutes of swapping followed by a misleading solver failure.
 //!
-//! Available memory: `MemAvailable` of /proc/meminfo, lowered to the room left under a
-//! cgroup (v2) limit; the environment variable `TRIBO_MEMORY_LIMIT` (bytes, or with a K,
-//! M or G suffix) replaces both. Where none can be read, nothing is checked.
+//! Available memory: the least of `MemAvailable` (/proc/meminfo), the room left under a
+//! cgroup (v2) limit and the address-space limit (`ulimit -v`); the environment variable
+//! `TRIBO_MEMORY_LIMIT` (bytes, or with a K, M or G suffix) replaces them all. Where none
+//! can be read, nothing is checked.
 //!
 //! The per-unknown figures are peak resident sizes measured with `/usr/bin/time -v` on
 //! `tribo run` (2-core machine, faer Cholesky / saddle-point LDLᵀ), rounded up:
@@ -83,12 +84,30 @@ pub fn available() -> Option<(u64, &'static str)> {
     // "max" (no limit) does not parse: no cgroup figure then
     let cgroup =
         read("memory.max").map(|max| max.saturating_sub(read("memory.current").unwrap_or(0)));
-    match (avail, cgroup) {
-        (Some(a), Some(c)) if c < a => Some((c, "the cgroup memory limit")),
-        (Some(a), _) => Some((a, "MemAvailable")),
-        (None, Some(c)) => Some((c, "the cgroup memory limit")),
-        (None, None) => None,
+    [
+        (avail, "MemAvailable"),
+        (cgroup, "the cgroup memory limit"),
+        (address_space(), "the address-space limit, ulimit -v"),
+    ]
+    .into_iter()
+    .filter_map(|(v, source)| Some((v?, source)))
+    .min_by_key(|&(v, _)| v)
+}
+
+/// The soft RLIMIT_AS, when there is one: past it every allocation fails (an abort).
+fn address_space() -> Option<u64> {
+    #[cfg(all(target_os = "linux", target_env = "gnu"))]
+    {
+        let mut lim = libc::rlimit {
+            rlim_cur: 0,
+            rlim_max: 0,
+        };
+        // SAFETY: getrlimit only writes the struct it is given.
+        let ok = unsafe { libc::getrlimit(libc::RLIMIT_AS, &mut lim) } == 0;
+        (ok && lim.rlim_cur != libc::RLIM_INFINITY).then_some(lim.rlim_cur)
     }
+    #[cfg(not(all(target_os = "linux", target_env = "gnu")))]
+    None
 }
 
 /// "123", "512K", "1.5G" → bytes.
