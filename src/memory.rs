@@ -17,8 +17,12 @@
 //! | rectangle 400×400 Quad4, elastic        |  321 602 |   552 MB |      1.7 KB |
 //! | rectangle 200×200 Quad8, elastic        |  241 602 |   538 MB |      2.2 KB |
 //! | rectangle 400×400 Quad8, elastic        |  963 202 |  2340 MB |      2.4 KB |
-//! | SSNP154 C, size 0.1 (contact, friction) |   30 610 |   404 MB |       13 KB |
+//! | SSNP154 C, size 0.1 (point-to-segment, friction) | 30 610 | 404 MB |   13 KB |
 //! | SSNP154 C, size 0.05                    |   97 684 |  1043 MB |       11 KB |
+//! | SSNP154 A, size 0.1 (point-to-segment)  |   30 610 |   387 MB |       13 KB |
+//! | SSNP154 E, size 0.1 (node-to-segment)   |   30 610 |   367 MB |       12 KB |
+//! | SSNP154 C, size 0.1, mortar             |   30 610 |   257 MB |      8.4 KB |
+//! | disc pair, size 0.02, mortar, small     |   42 744 |   174 MB |      4.1 KB |
 //! | `mesh refine --split 8` to 960k nodes, 989k cells  | — | 315 MB | —      |
 
 use crate::error::{Error, Result};
@@ -29,14 +33,23 @@ const BASE: u64 = 40 << 20;
 const PER_DOF_LINEAR: u64 = 2_000;
 const PER_DOF_QUADRATIC: u64 = 2_600;
 const PER_DOF_CONTACT: u64 = 14_000;
+const PER_DOF_MORTAR: u64 = 8_000;
 /// Bytes per kept converged state and unknown (displacements, nodal stresses, history).
 const PER_DOF_STATE: u64 = 48;
+
+/// Contact in a model: mortar needs less than the pointwise formulations (measured).
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Contact {
+    None,
+    Mortar,
+    Pointwise,
+}
 
 /// What a model to solve is made of, for its estimate.
 pub struct Model {
     pub nodes: usize,
     pub quadratic: bool,
-    pub contact: bool,
+    pub contact: Contact,
     /// Converged states kept in memory for the output (1 without a history).
     pub kept_states: usize,
 }
@@ -44,12 +57,11 @@ pub struct Model {
 /// Estimated peak bytes of assembling and solving `m`.
 pub fn solve_bytes(m: &Model) -> u64 {
     let dofs = 2 * m.nodes as u64;
-    let per = if m.contact {
-        PER_DOF_CONTACT
-    } else if m.quadratic {
-        PER_DOF_QUADRATIC
-    } else {
-        PER_DOF_LINEAR
+    let per = match (m.contact, m.quadratic) {
+        (Contact::Pointwise, _) => PER_DOF_CONTACT,
+        (Contact::Mortar, _) => PER_DOF_MORTAR,
+        (Contact::None, true) => PER_DOF_QUADRATIC,
+        (Contact::None, false) => PER_DOF_LINEAR,
     };
     let states = (m.kept_states as u64).saturating_mul(PER_DOF_STATE);
     BASE.saturating_add(dofs.saturating_mul(per.saturating_add(states)))
@@ -171,10 +183,12 @@ mod tests {
             kept_states: 1,
         };
         // the measured 400×400 Quad4 rectangle: 552 MB
-        let q4 = solve_bytes(&m(160_801, false));
+        let q4 = solve_bytes(&m(160_801, Contact::None));
         assert!((552 << 20..800 << 20).contains(&q4), "{}", show(q4));
-        assert!(solve_bytes(&m(15_305, true)) > solve_bytes(&m(15_305, false)));
-        assert_eq!(solve_bytes(&m(usize::MAX, true)), u64::MAX);
+        let c = |contact| solve_bytes(&m(15_305, contact));
+        assert!(c(Contact::Pointwise) > c(Contact::Mortar));
+        assert!(c(Contact::Mortar) > c(Contact::None));
+        assert_eq!(solve_bytes(&m(usize::MAX, Contact::Pointwise)), u64::MAX);
         assert_eq!(show(3 << 29), "1.5 GB");
         assert_eq!(show(230 << 20), "230 MB");
     }

@@ -3,7 +3,7 @@
 
 use super::schema::{CaseFile, MeshSpec};
 use crate::error::Result;
-use crate::memory::{self, Model};
+use crate::memory::{self, Contact, Model};
 use crate::mesh::{CellKind, Mesh};
 
 /// Nodes and cells of a structured grid of `a` × `b` cells of `kind`.
@@ -41,7 +41,7 @@ pub fn check_generated(spec: &MeshSpec) -> Result<()> {
     let solve = memory::solve_bytes(&Model {
         nodes: nodes as usize,
         quadratic: kind.is_quadratic(),
-        contact: false,
+        contact: Contact::None,
         kept_states: 1,
     });
     memory::check(&format!("solving the mesh of {what}"), solve)
@@ -50,7 +50,13 @@ pub fn check_generated(spec: &MeshSpec) -> Result<()> {
 /// The model of a case on its mesh, before assembly.
 pub fn check_model(case: &CaseFile, mesh: &Mesh) -> Result<()> {
     let quadratic = mesh.cells_of_dim(2).any(|c| mesh.kind(c).is_quadratic());
-    let contact = !case.contact.is_empty();
+    let contact = if case.contact.is_empty() {
+        Contact::None
+    } else if case.contact.iter().all(|c| c.formulation == "mortar") {
+        Contact::Mortar
+    } else {
+        Contact::Pointwise
+    };
     let kept_states = if case.output.history {
         case.solver.steps.max(1)
     } else {
@@ -66,7 +72,11 @@ pub fn check_model(case: &CaseFile, mesh: &Mesh) -> Result<()> {
         "the model ({} nodes, {} unknowns{}{})",
         mesh.num_nodes(),
         2 * mesh.num_nodes(),
-        if contact { ", contact" } else { "" },
+        match contact {
+            Contact::None => "",
+            Contact::Mortar => ", mortar contact",
+            Contact::Pointwise => ", contact",
+        },
         if kept_states > 1 {
             format!(", {kept_states} load steps kept for the history")
         } else {
