@@ -21,6 +21,9 @@ pub enum Error {
     /// The numerical solution failed (singular matrix, Newton divergence, ...).
     #[error("{0}")]
     Solve(String),
+    /// Not enough memory: an estimate beyond what is available, or a failed allocation.
+    #[error("{0}")]
+    Memory(String),
 }
 
 pub type Result<T> = std::result::Result<T, Error>;

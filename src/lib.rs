@@ -22,6 +22,7 @@ pub mod cli;
 pub mod contact;
 pub mod error;
 pub mod fem;
+pub mod memory;
 pub mod mesh;
 pub mod post;
 pub mod solver;

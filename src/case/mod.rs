@@ -8,6 +8,7 @@
 //! | `pairs.rs` | the contact pairs |
 //! | `probe.rs` | probes: their nodes and values |
 //! | `solve.rs` | a run: the solve and its outcome, or what a failed one kept |
+//! | `sizes.rs` | memory estimates of generated meshes and of the model, checked before work |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
 
 pub mod checks;
@@ -15,6 +16,7 @@ pub mod loading;
 pub mod pairs;
 pub mod probe;
 pub mod schema;
+mod sizes;
 pub mod solve;
 pub mod ssnp154;
 
@@ -57,6 +59,7 @@ fn need<T: Copy>(v: Option<T>, key: &str, generator: &str) -> Result<T> {
 /// Builds the mesh of a case: a file (relative to `dir`) or a generator.
 pub fn build_mesh(spec: &schema::MeshSpec, dir: &Path) -> Result<Mesh> {
     checks::check_mesh_spec(spec)?;
+    sizes::check_generated(spec)?;
     match (&spec.file, &spec.generator) {
         (Some(f), None) => {
             let p = dir.join(f);
@@ -129,6 +132,7 @@ fn dof_index(node: usize, dof: &str, what: &str) -> Result<usize> {
 /// The assembled problem of a case, ready to solve.
 pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem<'m>> {
     checks::check(case)?;
+    sizes::check_model(case, mesh)?;
     let m = &case.model;
     if m.modelisation == Modelisation::PlaneStress && m.kinematics == Kinematics::Large {
         return Err(Error::model(

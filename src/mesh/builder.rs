@@ -109,6 +109,18 @@ impl MeshBuilder {
                 )));
             }
         }
+        // a length below 1e-12 of the mesh's extent is zero
+        let (lo, hi) =
+            self.mesh
+                .coords
+                .iter()
+                .fold(([f64::MAX; 2], [f64::MIN; 2]), |(lo, hi), x| {
+                    (
+                        [lo[0].min(x[0]), lo[1].min(x[1])],
+                        [hi[0].max(x[0]), hi[1].max(x[1])],
+                    )
+                });
+        let tol = 1e-12 * (hi[0] - lo[0]).hypot(hi[1] - lo[1]);
         for c in 0..self.mesh.num_cells() {
             if let Some(&bad) = self.mesh.cell_nodes(c).iter().find(|&&n| n >= n_nodes) {
                 return Err(Error::model(format!(
@@ -121,6 +133,22 @@ impl MeshBuilder {
                 )));
             }
             let kind = self.mesh.kinds[c];
+            let nodes = self.mesh.cell_nodes(c);
+            if let Some(a) = (1..nodes.len()).find(|&a| nodes[..a].contains(&nodes[a])) {
+                return Err(Error::model(format!(
+                    "{}: cell {} ({}) lists node {} twice",
+                    self.source,
+                    self.labels[c],
+                    kind,
+                    nodes[a] + 1
+                )));
+            }
+            if kind.dim() == 1 && self.zero_length(c, tol) {
+                return Err(Error::model(format!(
+                    "{}: cell {} ({}) is of zero length",
+                    self.source, self.labels[c], kind
+                )));
+            }
             if kind.dim() != 2 {
                 continue;
             }
@@ -153,6 +181,13 @@ impl MeshBuilder {
             nodes.dedup();
         }
         Ok(self.mesh)
+    }
+
+    /// Two nodes of a 1D cell at one place (relative to the mesh's extent): a contact
+    /// or load edge without a direction.
+    fn zero_length(&self, c: usize, tol: f64) -> bool {
+        let (x, n) = self.mesh.cell_coords(c);
+        (0..n).any(|a| (0..a).any(|b| (x[a][0] - x[b][0]).hypot(x[a][1] - x[b][1]) <= tol))
     }
 
     /// Sign of det J at the reference nodes and the centre of a 2D cell.

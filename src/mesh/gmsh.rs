@@ -787,6 +787,28 @@ impl<'a> Parser<'a> {
         })
     }
 
+    /// Reads the `n` node tags of element `label` (at `p`) into `conn`; a tag listed twice
+    /// is an error (the cell would be degenerate).
+    fn element_nodes(&mut self, n: usize, label: u64, p: Pos) -> Result<()> {
+        let start = self.conn.len();
+        let mut tags = [0u64; 8];
+        for a in 0..n {
+            let (tag, pt) = if self.version == Version::V22 {
+                self.ascii_num::<u64>("node number")?
+            } else {
+                self.size("node tag")?
+            };
+            let index = self.node_index(tag, pt, label)?;
+            if tags[..a].contains(&tag) {
+                return Err(self.err(p, format!("element {label} lists node {tag} twice")));
+            }
+            tags[a.min(7)] = tag;
+            self.conn.push(index);
+        }
+        debug_assert_eq!(self.conn.len(), start + n);
+        Ok(())
+    }
+
     fn elements41(&mut self) -> Result<()> {
         if self.binary {
             self.end_header_line()?;
@@ -796,9 +818,23 @@ impl<'a> Parser<'a> {
         self.size("smallest element tag")?;
         self.size("largest element tag")?;
         let mut total: u64 = 0;
+        let mut element_tags = std::collections::HashSet::new();
         for _ in 0..nblocks {
             let dim = self.entity_dim()?;
-            let (entity, _) = self.int("entity tag")?;
+            let (entity, pe) = self.int("entity tag")?;
+            if self
+                .entities
+                .as_ref()
+                .is_some_and(|m| !m.contains_key(&(dim, entity)))
+            {
+                return Err(self.err(
+                    pe,
+                    format!(
+                        "element block of entity {entity} (dim {dim}): \
+                         the entity is not in $Entities"
+                    ),
+                ));
+            }
             let (gmsh_type, pt) = self.int("element type")?;
             let kind = self.element_kind(gmsh_type, pt)?;
             let (count, _) = self.size("number of elements in the block")?;
@@ -816,12 +852,14 @@ impl<'a> Parser<'a> {
                 count: 0,
             };
             for _ in 0..count {
-                let (label, _) = self.size("element tag")?;
-                for _ in 0..n {
-                    let (tag, p) = self.size("node tag")?;
-                    let index = self.node_index(tag, p, label)?;
-                    self.conn.push(index);
+                let (label, pl) = self.size("element tag")?;
+                if !element_tags.insert(label) {
+                    return Err(self.err(
+                        pl,
+                        format!("element tag {label} appears twice in $Elements"),
+                    ));
                 }
+                self.element_nodes(n, label, pl)?;
                 self.labels.push(label);
             }
             block.count = self.labels.len() - block.label_start;
@@ -841,7 +879,7 @@ impl<'a> Parser<'a> {
     fn elements22(&mut self) -> Result<()> {
         let (n, _) = self.ascii_num::<u64>("number of elements")?;
         for _ in 0..n {
-            let (label, _) = self.ascii_num::<u64>("element number")?;
+            let (label, pl) = self.ascii_num::<u64>("element number")?;
             let (gmsh_type, pt) = self.ascii_num::<i64>("element type")?;
             let kind = self.element_kind(gmsh_type, pt)?;
             let (ntags, _) = self.ascii_num::<u64>("number of tags")?;
@@ -853,11 +891,7 @@ impl<'a> Parser<'a> {
                 }
             }
             let conn_start = self.conn.len();
-            for _ in 0..kind.num_nodes() {
-                let (tag, p) = self.ascii_num::<u64>("node number")?;
-                let index = self.node_index(tag, p, label)?;
-                self.conn.push(index);
-            }
+            self.element_nodes(kind.num_nodes(), label, pl)?;
             let dim = kind.dim() as i64;
             match self.blocks.last_mut() {
                 Some(b) if b.kind == kind && b.key == physical => b.count += 1,
@@ -945,8 +979,9 @@ impl<'a> Parser<'a> {
                         return Err(Error::parse(
                             source,
                             format!(
-                                "physical group {t} (dim {}) has no name in $PhysicalNames",
-                                b.dim
+                                "physical group {t} (dim {}) of element {} has no name \
+                                 in $PhysicalNames",
+                                b.dim, labels[b.label_start]
                             ),
                         ))
                     }
@@ -1524,12 +1559,12 @@ $EndElements
         let text = replace_once(BASE41, "4\n0 3 \"Corner\"\n", "3\n");
         assert_eq!(
             err(text.as_bytes()),
-            "t.msh: physical group 3 (dim 0) has no name in $PhysicalNames"
+            "t.msh: physical group 3 (dim 0) of element 1 has no name in $PhysicalNames"
         );
         let text = replace_once(BASE22, "2 2 \"Body\"\n", "1 2 \"Body\"\n");
         assert_eq!(
             err(text.as_bytes()),
-            "t.msh: physical group 2 (dim 2) has no name in $PhysicalNames"
+            "t.msh: physical group 2 (dim 2) of element 3 has no name in $PhysicalNames"
         );
         let text = replace_once(BASE41, "\"All\"", "All");
         assert_eq!(
@@ -1654,8 +1689,17 @@ $EndElements
                 line_of(&text, "2 4 0 0")
             )
         );
-        // A degenerate cell is rejected by the mesh builder, naming the element.
+        // A node listed twice in an element is refused where it is read.
         let text = replace_once(BASE41, "5 10 20 30 40", "5 10 20 20 40");
+        assert_eq!(
+            err(text.as_bytes()),
+            format!(
+                "t.msh:{}: element 5 lists node 20 twice",
+                line_of(&text, "5 10 20 20 40")
+            )
+        );
+        // A degenerate cell is rejected by the mesh builder, naming the element.
+        let text = replace_once(BASE41, "5 10 20 30 40", "5 10 20 40 30");
         assert_eq!(
             err(text.as_bytes()),
             "t.msh: cell 5 (Quad4) is inverted or tangled (its Jacobian changes sign or vanishes)"

@@ -57,9 +57,36 @@ pub fn parse(bytes: Vec<u8>, source: &str) -> Result<Mesh> {
     if !hdf5_pure::is_hdf5_bytes(&bytes) {
         return Err(err("not an HDF5 file (no HDF5 signature)".into()));
     }
+    if let Some(eof) = end_of_file(&bytes).filter(|&e| e > bytes.len() as u64) {
+        return Err(err(format!(
+            "truncated HDF5 file: {} bytes, its superblock says {eof}",
+            bytes.len()
+        )));
+    }
     let file = File::from_bytes(bytes).map_err(|e| err(format!("unreadable HDF5 file: {e}")))?;
     let reader = Reader { source, file };
     reader.mesh()
+}
+
+/// The end-of-file address of an HDF5 superblock at the start of the file (versions 0–3,
+/// 8-byte addresses): a shorter file was cut, and would otherwise read as one without
+/// its groups.
+fn end_of_file(b: &[u8]) -> Option<u64> {
+    if !b.starts_with(b"\x89HDF\r\n\x1a\n") {
+        return None;
+    }
+    let (size_at, eof_at) = match *b.get(8)? {
+        0 => (13, 40),
+        1 => (13, 44),
+        2 | 3 => (9, 28),
+        _ => return None,
+    };
+    if *b.get(size_at)? != 8 {
+        return None;
+    }
+    Some(u64::from_le_bytes(
+        b.get(eof_at..eof_at + 8)?.try_into().ok()?,
+    ))
 }
 
 struct Reader<'a> {

@@ -137,6 +137,26 @@ pub fn split(mesh: &Mesh, n: usize) -> Result<Mesh> {
             "mesh refine: --split must be between 1 and {MAX_SPLIT}, got {n}"
         )));
     }
+    // n² cells per 2D cell and about n² nodes per node: checked before they are made
+    let n2 = (n * n) as u64;
+    let cells: u64 = (0..mesh.num_cells())
+        .map(|c| match mesh.kind(c).dim() {
+            2 => n2,
+            1 => n as u64,
+            _ => 1,
+        })
+        .sum();
+    let nodes = (mesh.num_nodes() as u64).saturating_mul(n2);
+    let per_cell = mesh
+        .kind_counts()
+        .keys()
+        .map(|k| k.num_nodes())
+        .max()
+        .unwrap_or(0);
+    crate::memory::check(
+        &format!("mesh refine --split {n} (about {nodes} nodes, {cells} cells)"),
+        crate::memory::mesh_bytes(nodes, cells, per_cell),
+    )?;
     let mut b = MeshBuilder::new("refined mesh");
     let mut nodes: HashMap<Key, usize> = HashMap::new();
     for (i, &x) in mesh.coords.iter().enumerate() {

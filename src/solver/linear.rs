@@ -160,13 +160,18 @@ impl LinearSolver {
                 if self.sym_llt.is_none() {
                     self.sym_llt = Some(
                         SymbolicLlt::try_new(mat.symbolic(), Side::Lower).map_err(|e| {
-                            Error::solve(format!("symbolic Cholesky failed: {e:?}"))
+                            memory_error(&e, mat.nrows()).unwrap_or_else(|| {
+                                Error::solve(format!("symbolic Cholesky failed: {e:?}"))
+                            })
                         })?,
                     );
                     self.symbolic_count += 1;
                 }
                 let sym = self.sym_llt.clone().unwrap();
                 self.llt = Some(Llt::try_new_with_symbolic(sym, mat, Side::Lower).map_err(|e| {
+                    if let Some(oom) = memory_error(&e, mat.nrows()) {
+                        return oom;
+                    }
                     Error::solve(format!(
                         "the stiffness matrix is not positive definite ({e:?}): the model probably has a \
                          rigid-body mode (a body not held by imposed displacements or contact) or an \
@@ -217,17 +222,17 @@ impl LinearSolver {
 
     fn factor_lu(&mut self, a: &SparseMatrix) -> Result<()> {
         if self.sym_lu.is_none() {
-            self.sym_lu = Some(
-                SymbolicLu::try_new(a.as_faer().symbolic())
-                    .map_err(|e| Error::solve(format!("symbolic LU failed: {e:?}")))?,
-            );
+            self.sym_lu = Some(SymbolicLu::try_new(a.as_faer().symbolic()).map_err(|e| {
+                memory_error(&e, a.n)
+                    .unwrap_or_else(|| Error::solve(format!("symbolic LU failed: {e:?}")))
+            })?);
             self.symbolic_count += 1;
         }
         let sym = self.sym_lu.clone().unwrap();
-        self.lu = Some(
-            Lu::try_new_with_symbolic(sym, a.as_faer())
-                .map_err(|e| Error::solve(format!("the system matrix is singular ({e:?})")))?,
-        );
+        self.lu = Some(Lu::try_new_with_symbolic(sym, a.as_faer()).map_err(|e| {
+            memory_error(&e, a.n)
+                .unwrap_or_else(|| Error::solve(format!("the system matrix is singular ({e:?})")))
+        })?);
         Ok(())
     }
 
@@ -428,6 +433,19 @@ fn transpose_columns(a: &SparseMatrix, cols: std::ops::Range<usize>, out: &mut [
             }
         }
     }
+}
+
+/// A faer failure that is a failed allocation, reported as such (it is no singular
+/// matrix, and cutting the load step will not help): `n` unknowns.
+pub fn memory_error(e: &impl std::fmt::Debug, n: usize) -> Option<Error> {
+    format!("{e:?}").contains("OutOfMemory").then(|| {
+        let (avail, source) = crate::memory::available().unwrap_or((0, "unknown"));
+        Error::Memory(format!(
+            "out of memory factorising the stiffness matrix ({n} unknowns; {} available, \
+             {source}): use a coarser mesh or a machine with more memory",
+            crate::memory::show(avail)
+        ))
+    })
 }
 
 #[cfg(test)]

@@ -633,6 +633,10 @@ pub fn solve_into(
                 continue;
             }
             if let Err(e) = solved {
+                // no smaller step needs less memory: stop at once
+                if matches!(e, Error::Memory(_)) {
+                    return Err(e);
+                }
                 failure = Some(e.to_string());
                 break;
             }

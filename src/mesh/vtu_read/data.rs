@@ -45,7 +45,7 @@ enum Data<'t> {
 /// The values of `a` as f64 (any numeric type); `expected` of them.
 pub fn floats(a: &Array, layout: &Layout, expected: usize) -> Result<Vec<f64>, String> {
     let ty = a.attrs.get("type").map_or("", String::as_str);
-    let v = match data(a, layout)? {
+    let v = match data(a, layout, expected)? {
         Data::Text(t) => t
             .split_ascii_whitespace()
             .map(|w| {
@@ -62,7 +62,7 @@ pub fn floats(a: &Array, layout: &Layout, expected: usize) -> Result<Vec<f64>, S
 /// The values of `a` as integers (an integer type); `expected` of them.
 pub fn ints(a: &Array, layout: &Layout, expected: usize) -> Result<Vec<i64>, String> {
     let ty = a.attrs.get("type").map_or("", String::as_str);
-    let v = match data(a, layout)? {
+    let v = match data(a, layout, expected)? {
         Data::Text(t) => t
             .split_ascii_whitespace()
             .map(|w| {
@@ -108,11 +108,11 @@ fn unreadable(a: &Array, ty: &str, len: usize) -> String {
     )
 }
 
-fn data<'t>(a: &'t Array, layout: &Layout) -> Result<Data<'t>, String> {
+fn data<'t>(a: &'t Array, layout: &Layout, expected: usize) -> Result<Data<'t>, String> {
     let name = a.name();
     match a.attrs.get("format").map(String::as_str) {
         Some("ascii") => Ok(Data::Text(&a.text)),
-        Some("binary") => inline_binary(&a.text, layout.header64, layout.zlib)
+        Some("binary") => inline_binary(&a.text, layout.header64, layout.zlib, expected)
             .map(Data::Bytes)
             .map_err(|e| format!("array '{name}' (binary): {e}")),
         Some("appended") => {
@@ -125,7 +125,7 @@ fn data<'t>(a: &'t Array, layout: &Layout) -> Result<Data<'t>, String> {
                 .appended
                 .get(off..)
                 .ok_or_else(|| format!("array '{name}': offset {off} beyond the data"))?;
-            unpack(block, layout.header64, layout.zlib)
+            unpack(block, layout.header64, layout.zlib, expected)
                 .map(Data::Bytes)
                 .map_err(|e| format!("array '{name}' (appended at {off}): {e}"))
         }
@@ -149,10 +149,15 @@ fn b64(text: &[u8]) -> Result<Vec<u8>, String> {
 
 /// Inline binary data: the header and the data base64-encoded as one stream (meshio,
 /// uncompressed) or apart (VTK; meshio compressed).
-fn inline_binary(text: &str, header64: bool, zlib: bool) -> Result<Vec<u8>, String> {
+fn inline_binary(
+    text: &str,
+    header64: bool,
+    zlib: bool,
+    expected: usize,
+) -> Result<Vec<u8>, String> {
     let t: Vec<u8> = text.bytes().filter(|c| !c.is_ascii_whitespace()).collect();
     // one stream: base64 padding only at its end
-    let whole = b64(&t).and_then(|all| unpack(&all, header64, zlib));
+    let whole = b64(&t).and_then(|all| unpack(&all, header64, zlib, expected));
     if whole.is_ok() {
         return whole;
     }
@@ -172,7 +177,7 @@ fn inline_binary(text: &str, header64: bool, zlib: bool) -> Result<Vec<u8>, Stri
     let mut buf = b64(head)?;
     buf.truncate(header_len);
     buf.extend(b64(&t[hc..])?);
-    unpack(&buf, header64, zlib)
+    unpack(&buf, header64, zlib, expected)
 }
 
 /// Header word `i` (UInt32 or UInt64) of `buf`.
@@ -188,7 +193,9 @@ fn word(buf: &[u8], i: usize, header64: bool) -> Option<u64> {
 
 /// The data of a block sequence: a size header and the bytes, or with zlib
 /// [blocks, block size, last block size, compressed sizes...] and the compressed blocks.
-fn unpack(buf: &[u8], header64: bool, zlib: bool) -> Result<Vec<u8>, String> {
+/// Compressed data announcing more than 8 bytes for each of the `expected` values is
+/// refused before it is inflated (a zip bomb).
+fn unpack(buf: &[u8], header64: bool, zlib: bool, expected: usize) -> Result<Vec<u8>, String> {
     let hl: usize = if header64 { 8 } else { 4 };
     let w = |i: usize| word(buf, i, header64).ok_or_else(|| "truncated header".to_string());
     let size = |v: u64| usize::try_from(v).map_err(|_| format!("size {v} too large"));
@@ -206,6 +213,15 @@ fn unpack(buf: &[u8], header64: bool, zlib: bool) -> Result<Vec<u8>, String> {
         .and_then(|b| b.checked_mul(hl))
         .filter(|&p| p <= buf.len())
         .ok_or_else(|| format!("header of {blocks} blocks longer than the data"))?;
+    let announced = match blocks {
+        0 => 0,
+        b => (b as u64 - 1)
+            .saturating_mul(block as u64)
+            .saturating_add(if last != 0 { last } else { block } as u64),
+    };
+    if announced > (expected as u64).saturating_mul(8) {
+        return Err(format!("{announced} bytes announced for {expected} values"));
+    }
     let mut out = vec![];
     for i in 0..blocks {
         let c = size(w(3 + i)?)?;

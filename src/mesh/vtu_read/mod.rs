@@ -223,7 +223,10 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
     if ncomp != 3 && ncomp != 2 {
         return Err(err(format!("points with {ncomp} components")));
     }
-    let xyz = values(pts, np * ncomp)?;
+    let n_values = np
+        .checked_mul(ncomp)
+        .ok_or_else(|| err(format!("NumberOfPoints {np} is too large")))?;
+    let xyz = values(pts, n_values)?;
     let mut b = MeshBuilder::new(source);
     for (i, p) in xyz.chunks(ncomp).enumerate() {
         if ncomp == 3 && p[2] != 0.0 {
@@ -273,6 +276,9 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
                     np as i64 - 1
                 ))
             })?;
+            if nodes.contains(&n) {
+                return Err(err(format!("cell {}: node index {n} appears twice", c + 1)));
+            }
             nodes.push(n);
         }
         b.add_cell(kind, &nodes, c as u64 + 1);
@@ -283,20 +289,33 @@ pub fn parse(bytes: &[u8], source: &str) -> Result<Mesh> {
             continue;
         };
         if let (Some(g), "CellData") = (name.strip_prefix("group_"), a.section) {
-            for (c, v) in values(a, nc)?.iter().enumerate() {
-                if *v != 0.0 {
-                    b.add_to_cell_group(g, c);
-                }
+            for c in members(&values(a, nc)?, name, "cell").map_err(&err)? {
+                b.add_to_cell_group(g, c);
             }
         } else if let (Some(g), "PointData") = (name.strip_prefix("nodes_"), a.section) {
-            for (n, v) in values(a, np)?.iter().enumerate() {
-                if *v != 0.0 {
-                    b.add_to_node_group(g, n);
-                }
+            for n in members(&values(a, np)?, name, "point").map_err(&err)? {
+                b.add_to_node_group(g, n);
             }
         }
     }
     b.finish()
+}
+
+/// The entities flagged 1 in a group's flags; any value but 0 and 1 is an error (a NaN
+/// or 0.5 would otherwise count as a member).
+fn members(flags: &[f64], name: &str, what: &str) -> std::result::Result<Vec<usize>, String> {
+    let mut out = vec![];
+    for (i, &v) in flags.iter().enumerate() {
+        if v == 1.0 {
+            out.push(i);
+        } else if v != 0.0 {
+            return Err(format!(
+                "array '{name}': value {v} of {what} {} is not a 0/1 flag",
+                i + 1
+            ));
+        }
+    }
+    Ok(out)
 }
 
 fn find(hay: &[u8], needle: &[u8]) -> Option<usize> {
