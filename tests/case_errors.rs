@@ -186,7 +186,7 @@ fn bad_contact_entries_are_rejected() {
     assert_eq!(
         contact_error("gap.toml", &format!("{pair}\ninitial_gap = 0.1")),
         "[[contact]] 1 (Top on Bottom): initial_gap must be 0 or positive and goes with initial = \"closed\", \
-         got 0.1 with initial = \"all\""
+         got 0.1 with initial = \"touching (the default)\""
     );
     let e = contact_error("pt.toml", "slave = \"TopLeft\"\nmaster = \"Bottom\"");
     assert!(

@@ -344,7 +344,8 @@ pub struct ContactSpec {
     pub slave: String,
     /// Edge group of the master surface.
     pub master: String,
-    /// "point-to-segment" (the reference code's continuous method).
+    /// "mortar" (the default: see the README on which to choose), "point-to-segment" (the
+    /// reference code's continuous method) or "node-to-segment" (its discrete method).
     #[serde(default = "default_formulation")]
     pub formulation: String,
     /// point-to-segment: "gauss" (3 points per slave cell) or "nodal".
@@ -392,7 +393,7 @@ pub struct ContactSpec {
 }
 
 fn default_formulation() -> String {
-    "point-to-segment".into()
+    "mortar".into()
 }
 fn default_integration() -> String {
     "gauss".into()
