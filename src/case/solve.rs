@@ -3,12 +3,18 @@
 //! gave (`Failure::partial`), so that a caller can keep the results it has.
 
 use super::schema::CaseFile;
-use super::{build_pairs, build_problem, loading, probe, probe_nodes};
+use super::{build_pairs, build_problem, loading, probes};
+use crate::assembly::coupled::Triplets;
 use crate::contact::problem::ContactProblem;
 use crate::contact::surface::Surface;
 use crate::error::{Error, Result};
+use crate::fem::material::Modelisation;
+use crate::fem::solid::{Kinematics, StressMeasure};
 use crate::mesh::Mesh;
-use crate::post::stress::{cell_node_stresses, nodal_stresses};
+pub use crate::post::contact_state::Multipliers;
+use crate::post::contact_summary::{pair_result, PairInput, PairResult};
+use crate::post::probe::StateFields;
+use crate::post::stress::{cell_node_stresses, cell_node_stresses_as, nodal_stresses};
 use crate::solver::linear::Method;
 use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
 use crate::solver::problem::SolidProblem;
@@ -18,8 +24,10 @@ pub struct Outcome {
     pub report: NewtonReport,
     /// The state after each converged load step (when the case writes VTU files).
     pub steps: Vec<StepOutcome>,
-    /// Per contact pair: (slave node, pressure) from the multipliers.
+    /// Per contact pair: (slave node, pressure) from the multipliers (open nodes: 0).
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    /// Per contact pair: the slave nodes' contact values and what they add up to.
+    pub contact: Vec<PairResult>,
     /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
     pub contact_multipliers: Vec<Multipliers>,
     /// Per contact pair: (slave, master) surfaces.
@@ -30,6 +38,8 @@ pub struct Outcome {
     pub reactions: Vec<f64>,
     /// Nodal stresses averaged over all cells sharing a node.
     pub stress: Vec<[f64; 4]>,
+    /// The same for the second Piola–Kirchhoff stress (large kinematics only).
+    pub pk2: Option<Vec<[f64; 4]>>,
     pub probes: Vec<(String, f64)>,
 }
 
@@ -40,50 +50,93 @@ pub struct StepOutcome {
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     pub stress: Vec<[f64; 4]>,
+    pub pk2: Option<Vec<[f64; 4]>>,
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
     pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
     pub contact_multipliers: Vec<Multipliers>,
+    pub contact: Vec<PairResult>,
 }
 
-/// (slave node, [normal, tangential] multiplier) of one contact pair.
-pub type Multipliers = Vec<(usize, [f64; 2])>;
+/// The contact outputs of a state, per pair: pressures, (μ, shear), multipliers, and the
+/// nodal values with their sums.
+struct ContactFields {
+    pressure: Vec<Vec<(usize, f64)>>,
+    shear: Vec<(f64, Vec<(usize, f64)>)>,
+    multipliers: Vec<Multipliers>,
+    pairs: Vec<PairResult>,
+}
 
+impl ContactFields {
+    fn none() -> Self {
+        ContactFields {
+            pressure: vec![],
+            shear: vec![],
+            multipliers: vec![],
+            pairs: vec![],
+        }
+    }
+}
+
+/// Nodal stresses, probes and the fields of the problem's current state.
 fn step_outcome(
     case: &CaseFile,
     mesh: &Mesh,
     solid: &SolidProblem,
     time: f64,
-    contact_pressure: Vec<Vec<(usize, f64)>>,
-    contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+    contact: ContactFields,
 ) -> Result<StepOutcome> {
     let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
     let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(solid, p, &elno, &stress)?));
+    let large = solid
+        .asm
+        .cell_model
+        .iter()
+        .any(|m| m.kinematics == Kinematics::Large);
+    let pk2_elno = if large {
+        Some(cell_node_stresses_as(
+            mesh,
+            &solid.asm,
+            &solid.u,
+            StressMeasure::Pk2,
+        )?)
+    } else {
+        None
+    };
+    let pk2 = match &pk2_elno {
+        Some(e) => Some(nodal_stresses(mesh, &solid.asm, e, None)?),
+        None => None,
+    };
+    let fields = StateFields {
+        mesh,
+        asm: &solid.asm,
+        u: &solid.u,
+        elno: &elno,
+        stress: &stress,
+        pk2: pk2_elno.as_ref().zip(pk2.as_deref()),
+        deformed: large,
+        contact: &contact.pairs,
+    };
+    let mut values = vec![];
+    for p in probes(case, mesh)? {
+        values.push((p.name.clone(), p.value(&fields)?));
     }
     Ok(StepOutcome {
         time,
-        probes,
+        probes: values,
         u: solid.u.clone(),
         reactions: solid.reactions(),
         stress,
-        contact_pressure,
-        contact_shear,
-        contact_multipliers: vec![],
+        pk2,
+        contact_pressure: contact.pressure,
+        contact_shear: contact.shear,
+        contact_multipliers: contact.multipliers,
+        contact: contact.pairs,
     })
 }
 
-/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers, and the raw
-/// multipliers.
-#[allow(clippy::type_complexity)]
-fn contact_tractions(
-    cp: &ContactProblem,
-) -> Result<(
-    Vec<Vec<(usize, f64)>>,
-    Vec<(f64, Vec<(usize, f64)>)>,
-    Vec<Multipliers>,
-)> {
+/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers (open nodes exactly
+/// 0), the raw multipliers, and the nodal values with their sums.
+fn contact_tractions(cp: &ContactProblem, axisymmetric: bool) -> Result<ContactFields> {
     let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
     for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
         let lam = &cp.lam[b..b + p.num_multipliers()];
@@ -102,7 +155,63 @@ fn contact_tractions(
             )));
         }
     }
-    Ok((pressures, shear, multipliers))
+    // the forces each pair applies: its contact terms of the residual, alone
+    let mesh = cp.solid.mesh;
+    let mut pairs = vec![];
+    for (i, (p, &b)) in cp.pairs.iter().zip(&cp.mult_base).enumerate() {
+        let n = p.num_multipliers();
+        let mut ru = vec![0.0; cp.solid.u.len()];
+        let mut rl = vec![0.0; n];
+        let lam = &cp.lam[b..b + n];
+        p.contribute(
+            mesh,
+            &cp.solid.u,
+            lam,
+            &mut ru,
+            &mut rl,
+            &mut Triplets::default(),
+            b,
+        );
+        let (slave, master) = p.surfaces();
+        pairs.push(pair_result(&PairInput {
+            mesh,
+            u: &cp.solid.u,
+            slave,
+            master,
+            pressure: &pressures[i],
+            shear: &shear[i].1,
+            mu: shear[i].0,
+            residual: &ru,
+            axisymmetric,
+            large: cp
+                .solid
+                .asm
+                .cell_model
+                .iter()
+                .any(|m| m.kinematics == Kinematics::Large),
+            reference_normals: p.reference_normals(),
+        }));
+    }
+    // the outputs from the multipliers too: open nodes exactly 0
+    for ((r, pr), sh) in pairs.iter().zip(&mut pressures).zip(&mut shear) {
+        let open: std::collections::HashSet<usize> = r
+            .nodes
+            .iter()
+            .filter(|c| c.status == crate::post::contact_state::OPEN)
+            .map(|c| c.node)
+            .collect();
+        for (n, v) in pr.iter_mut().chain(sh.1.iter_mut()) {
+            if open.contains(n) {
+                *v = 0.0;
+            }
+        }
+    }
+    Ok(ContactFields {
+        pressure: pressures,
+        shear,
+        multipliers,
+        pairs,
+    })
 }
 
 /// A run that failed: why, and once the solve had begun, its report, the time of the step
@@ -161,13 +270,7 @@ pub fn run_keeping(
         crate::post::curve::chain(mesh, &c.group)
             .map_err(|e| Error::model(format!("[[output.curve]] '{}': {e}", c.name)))?;
     }
-    for p in &case.output.probe {
-        probe_nodes(mesh, p)?;
-        if let Some(g) = &p.stress_group {
-            mesh.cell_group(g)
-                .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
-        }
-    }
+    let probes = probes(case, mesh)?;
     let (times, output_times) = loading::schedule(case, &problem.loading)?;
     let settings = NewtonSettings {
         steps: case.solver.steps.max(1),
@@ -195,6 +298,19 @@ pub fn run_keeping(
     } else {
         let pairs = build_pairs(case, mesh)?;
         supported_slave_nodes(case, &problem, &pairs)?;
+        let slaves: Vec<&[usize]> = pairs.iter().map(|p| &p.surfaces().0.nodes[..]).collect();
+        if let Some((p, n)) = probes
+            .iter()
+            .find_map(|p| p.off_surface(&slaves).map(|n| (p, n)))
+        {
+            return Err(Error::model(format!(
+                "probe '{}': node {} is on no slave surface of a [[contact]]: it has no contact \
+                 values",
+                p.name,
+                n + 1
+            ))
+            .into());
+        }
         let mut cp = ContactProblem::new(problem, pairs);
         if let Some(e) = cp.initial_overlap() {
             return Err(Error::model(e).into());
@@ -266,10 +382,16 @@ fn without_contact(
     for (lf, x, output) in states {
         problem.evaluate(x, *lf, &mut r, false)?;
         if *output && keep {
-            steps.push(step_outcome(case, mesh, problem, *lf, vec![], vec![])?);
+            steps.push(step_outcome(
+                case,
+                mesh,
+                problem,
+                *lf,
+                ContactFields::none(),
+            )?);
         }
     }
-    final_outcome(case, mesh, problem, steps)
+    final_outcome(case, mesh, problem, steps, ContactFields::none())
 }
 
 /// `without_contact` with contact: the pressures, shear and multipliers of each state too.
@@ -280,6 +402,7 @@ fn with_contact(
     states: &[(f64, Vec<f64>, bool)],
     keep: bool,
 ) -> Result<Outcome> {
+    let axisymmetric = case.model.modelisation == Modelisation::Axisymmetric;
     let mut steps = vec![];
     let mut r = vec![0.0; cp.num_unknowns()];
     for (lf, x, output) in states {
@@ -287,13 +410,11 @@ fn with_contact(
         if !(*output && keep) {
             continue;
         }
-        let (p, sh, m) = contact_tractions(cp)?;
-        let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
-        step.contact_multipliers = m;
-        steps.push(step);
+        let contact = contact_tractions(cp, axisymmetric)?;
+        steps.push(step_outcome(case, mesh, &cp.solid, *lf, contact)?);
     }
-    let (pressures, shear, multipliers) = contact_tractions(cp)?;
-    let mut o = final_outcome(case, mesh, &cp.solid, steps)?;
+    let contact = contact_tractions(cp, axisymmetric)?;
+    let mut o = final_outcome(case, mesh, &cp.solid, steps, contact)?;
     o.contact_surfaces = cp
         .pairs
         .iter()
@@ -302,9 +423,6 @@ fn with_contact(
             (s.clone(), m.clone())
         })
         .collect();
-    o.contact_pressure = pressures;
-    o.contact_shear = shear;
-    o.contact_multipliers = multipliers;
     Ok(o)
 }
 
@@ -314,24 +432,22 @@ fn final_outcome(
     mesh: &Mesh,
     problem: &SolidProblem,
     steps: Vec<StepOutcome>,
+    contact: ContactFields,
 ) -> Result<Outcome> {
-    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
-    let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(problem, p, &elno, &stress)?));
-    }
+    let last = step_outcome(case, mesh, problem, 0.0, contact)?;
     Ok(Outcome {
         report: NewtonReport::default(),
         steps,
-        contact_pressure: vec![],
-        contact_multipliers: vec![],
+        contact_pressure: last.contact_pressure,
+        contact_multipliers: last.contact_multipliers,
         contact_surfaces: vec![],
-        contact_shear: vec![],
-        reactions: problem.reactions(),
-        u: problem.u.clone(),
-        stress,
-        probes,
+        contact_shear: last.contact_shear,
+        contact: last.contact,
+        reactions: last.reactions,
+        u: last.u,
+        stress: last.stress,
+        pk2: last.pk2,
+        probes: last.probes,
     })
 }
 
