@@ -215,8 +215,8 @@ fn pk2_and_cauchy_are_related_by_the_deformation_gradient() {
         let axi = modelisation == "axisymmetric";
         let h = [[0.15, if axi { 0.0 } else { 0.25 }], [-0.1, 0.05]];
         for (n, x) in mesh.coords.iter().enumerate() {
-            for i in 0..2 {
-                problem.u[2 * n + i] = h[i][0] * x[0] + h[i][1] * x[1];
+            for (i, row) in h.iter().enumerate() {
+                problem.u[2 * n + i] = row[0] * x[0] + row[1] * x[1];
             }
         }
         let f = [[1.0 + h[0][0], h[0][1]], [h[1][0], 1.0 + h[1][1]]];
