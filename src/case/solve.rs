@@ -290,6 +290,7 @@ pub fn run_keeping(
     };
     let mut report = NewtonReport::default();
     if case.contact.is_empty() {
+        off_surface_probes(&probes, &[])?;
         let solved = newton::solve_into(&mut problem, &settings, Method::Cholesky, &mut report);
         let states = output_states(std::mem::take(&mut report.states), is_output);
         let kept = (solved.is_ok() || !states.is_empty())
@@ -299,18 +300,7 @@ pub fn run_keeping(
         let pairs = build_pairs(case, mesh)?;
         supported_slave_nodes(case, &problem, &pairs)?;
         let slaves: Vec<&[usize]> = pairs.iter().map(|p| &p.surfaces().0.nodes[..]).collect();
-        if let Some((p, n)) = probes
-            .iter()
-            .find_map(|p| p.off_surface(&slaves).map(|n| (p, n)))
-        {
-            return Err(Error::model(format!(
-                "probe '{}': node {} is on no slave surface of a [[contact]]: it has no contact \
-                 values",
-                p.name,
-                n + 1
-            ))
-            .into());
-        }
+        off_surface_probes(&probes, &slaves)?;
         let mut cp = ContactProblem::new(problem, pairs);
         if let Some(e) = cp.initial_overlap() {
             return Err(Error::model(e).into());
@@ -324,6 +314,23 @@ pub fn run_keeping(
         let kept = (solved.is_ok() || !states.is_empty())
             .then(|| with_contact(case, mesh, &mut cp, &states, settings.keep_states));
         finish(solved, kept, report)
+    }
+}
+
+/// A probe of a contact field on a node of no slave surface (`slaves`: their nodes,
+/// sorted) is refused before the solve: the node has no contact values.
+fn off_surface_probes(probes: &[crate::post::probe::Probe], slaves: &[&[usize]]) -> Result<()> {
+    match probes
+        .iter()
+        .find_map(|p| p.off_surface(slaves).map(|n| (p, n)))
+    {
+        Some((p, n)) => Err(Error::model(format!(
+            "probe '{}': node {} is on no slave surface of a [[contact]] (the surface that \
+             carries the multipliers): it has no contact values",
+            p.name,
+            n + 1
+        ))),
+        None => Ok(()),
     }
 }
 
