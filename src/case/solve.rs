@@ -190,6 +190,7 @@ fn contact_tractions(cp: &ContactProblem, axisymmetric: bool) -> Result<ContactF
                 .iter()
                 .any(|m| m.kinematics == Kinematics::Large),
             reference_normals: p.reference_normals(),
+            gap_allowance: p.overlap_allowance(),
         }));
     }
     // the outputs from the multipliers too: open nodes exactly 0

@@ -87,6 +87,8 @@ pub struct PairInput<'a> {
     /// The formulation's forces act along normals of the initial geometry (else of the
     /// deformed one).
     pub reference_normals: bool,
+    /// A gap the pair keeps closed (mortar's `adjust`), added to the open-gap tolerance.
+    pub gap_allowance: f64,
 }
 
 /// A closed node farther from the master than this fraction of its cells' mean length is
@@ -131,7 +133,7 @@ pub fn pair_result(inp: &PairInput) -> PairResult {
         .map(|(n, gap, normal)| {
             let normal = normals.get(&n).copied().unwrap_or(normal);
             let mut status = status[&n];
-            if gap > GAP_TOLERANCE * size[&n] {
+            if gap > GAP_TOLERANCE * size[&n] + inp.gap_allowance {
                 status = OPEN;
             }
             let open = status == OPEN;
