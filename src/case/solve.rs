@@ -4,15 +4,15 @@
 
 use super::schema::CaseFile;
 use super::{build_pairs, build_problem, loading, probes};
-use crate::assembly::coupled::Triplets;
 use crate::contact::problem::ContactProblem;
 use crate::contact::surface::Surface;
 use crate::error::{Error, Result};
 use crate::fem::material::Modelisation;
 use crate::fem::solid::{Kinematics, StressMeasure};
 use crate::mesh::Mesh;
+use crate::post::contact_fields::{contact_fields, ContactFields};
 pub use crate::post::contact_state::Multipliers;
-use crate::post::contact_summary::{pair_result, PairInput, PairResult};
+use crate::post::contact_summary::PairResult;
 use crate::post::probe::StateFields;
 use crate::post::stress::{cell_node_stresses, cell_node_stresses_as, nodal_stresses};
 use crate::solver::linear::Method;
@@ -55,26 +55,6 @@ pub struct StepOutcome {
     pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
     pub contact_multipliers: Vec<Multipliers>,
     pub contact: Vec<PairResult>,
-}
-
-/// The contact outputs of a state, per pair: pressures, (μ, shear), multipliers, and the
-/// nodal values with their sums.
-struct ContactFields {
-    pressure: Vec<Vec<(usize, f64)>>,
-    shear: Vec<(f64, Vec<(usize, f64)>)>,
-    multipliers: Vec<Multipliers>,
-    pairs: Vec<PairResult>,
-}
-
-impl ContactFields {
-    fn none() -> Self {
-        ContactFields {
-            pressure: vec![],
-            shear: vec![],
-            multipliers: vec![],
-            pairs: vec![],
-        }
-    }
 }
 
 /// Nodal stresses, probes and the fields of the problem's current state.
@@ -131,87 +111,6 @@ fn step_outcome(
         contact_shear: contact.shear,
         contact_multipliers: contact.multipliers,
         contact: contact.pairs,
-    })
-}
-
-/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers (open nodes exactly
-/// 0), the raw multipliers, and the nodal values with their sums.
-fn contact_tractions(cp: &ContactProblem, axisymmetric: bool) -> Result<ContactFields> {
-    let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
-    for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
-        let lam = &cp.lam[b..b + p.num_multipliers()];
-        pressures.push(p.nodal_pressures(lam));
-        shear.push((p.friction(), p.nodal_shear(lam)));
-        multipliers.push(p.nodal_multipliers(lam));
-    }
-    // never a non-finite value in an output
-    for (i, (p, s)) in pressures.iter().zip(&shear).enumerate() {
-        if let Some(&(n, v)) = p.iter().chain(&s.1).find(|(_, v)| !v.is_finite()) {
-            return Err(Error::Solve(format!(
-                "[[contact]] {}: the contact traction at node {} is {v} (a degenerate \
-                 contact there: a node with no share of the surface?)",
-                i + 1,
-                n + 1
-            )));
-        }
-    }
-    // the forces each pair applies: its contact terms of the residual, alone
-    let mesh = cp.solid.mesh;
-    let mut pairs = vec![];
-    for (i, (p, &b)) in cp.pairs.iter().zip(&cp.mult_base).enumerate() {
-        let n = p.num_multipliers();
-        let mut ru = vec![0.0; cp.solid.u.len()];
-        let mut rl = vec![0.0; n];
-        let lam = &cp.lam[b..b + n];
-        p.contribute(
-            mesh,
-            &cp.solid.u,
-            lam,
-            &mut ru,
-            &mut rl,
-            &mut Triplets::default(),
-            b,
-        );
-        let (slave, master) = p.surfaces();
-        pairs.push(pair_result(&PairInput {
-            mesh,
-            u: &cp.solid.u,
-            slave,
-            master,
-            pressure: &pressures[i],
-            shear: &shear[i].1,
-            mu: shear[i].0,
-            residual: &ru,
-            axisymmetric,
-            large: cp
-                .solid
-                .asm
-                .cell_model
-                .iter()
-                .any(|m| m.kinematics == Kinematics::Large),
-            reference_normals: p.reference_normals(),
-            gap_allowance: p.overlap_allowance(),
-        }));
-    }
-    // the outputs from the multipliers too: open nodes exactly 0
-    for ((r, pr), sh) in pairs.iter().zip(&mut pressures).zip(&mut shear) {
-        let open: std::collections::HashSet<usize> = r
-            .nodes
-            .iter()
-            .filter(|c| c.status == crate::post::contact_state::OPEN)
-            .map(|c| c.node)
-            .collect();
-        for (n, v) in pr.iter_mut().chain(sh.1.iter_mut()) {
-            if open.contains(n) {
-                *v = 0.0;
-            }
-        }
-    }
-    Ok(ContactFields {
-        pressure: pressures,
-        shear,
-        multipliers,
-        pairs,
     })
 }
 
@@ -418,10 +317,10 @@ fn with_contact(
         if !(*output && keep) {
             continue;
         }
-        let contact = contact_tractions(cp, axisymmetric)?;
+        let contact = contact_fields(cp, axisymmetric)?;
         steps.push(step_outcome(case, mesh, &cp.solid, *lf, contact)?);
     }
-    let contact = contact_tractions(cp, axisymmetric)?;
+    let contact = contact_fields(cp, axisymmetric)?;
     let mut o = final_outcome(case, mesh, &cp.solid, steps, contact)?;
     o.contact_surfaces = cp
         .pairs
