@@ -269,7 +269,7 @@ mod tests {
 
     #[test]
     fn shares_add_up_to_the_length_and_the_area() {
-        // the top edge of [1, 3] × [0, 1]: length 2, area 2π (3² − 1²) = 16π
+        // the top edge of [1, 3] × [0, 1]: length 2, area π (3² − 1²) = 8π
         for kind in [CellKind::Quad4, CellKind::Quad8] {
             let m = rectangle([1.0, 0.0], 2.0, 1.0, 3, 1, kind, 0.0).unwrap();
             let top = Surface::from_group(&m, "Top", "test").unwrap();
@@ -280,7 +280,7 @@ mod tests {
                 .sum();
             let a: f64 = surface_shares(&m, &u, &top, true).iter().map(|s| s.1).sum();
             assert!((l - 2.0).abs() < 1e-14, "{l}");
-            assert!((a - 16.0 * std::f64::consts::PI).abs() < 1e-12, "{a}");
+            assert!((a - 8.0 * std::f64::consts::PI).abs() < 1e-12, "{a}");
         }
     }
 }
