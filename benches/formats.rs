@@ -81,15 +81,14 @@ fn time_formats() {
     let materials: Vec<String> = c.material.iter().map(|m| m.group.clone()).collect();
     let setting = Setting {
         mesh: &mesh,
-        surfaces: &out.contact_surfaces,
         material_groups: &materials,
     };
     let state = State {
         u: &out.u,
         reactions: &out.reactions,
         stress: &out.stress,
-        pressure: &out.contact_pressure,
-        shear: &out.contact_shear,
+        pk2: out.pk2.as_deref(),
+        contact: &out.contact,
         multipliers: &out.contact_multipliers,
     };
     let path = tmp.join("result.vtu");

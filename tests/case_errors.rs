@@ -131,7 +131,9 @@ fn bad_probe_field_is_rejected_before_solving() {
     let e = error_of("probe.toml", &text);
     assert_eq!(
         e,
-        "probe 'tip': field 'temperature' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis"
+        "probe 'tip': field 'temperature' is not one of dx, dy, sixx, siyy, sizz, sixy, vmis, \
+         pk2xx, pk2yy, pk2zz, pk2xy, sirr, sitt, sirt, contact_pressure, contact_shear, \
+         contact_gap, contact_status"
     );
 }
 

@@ -70,7 +70,9 @@ fn run_writes_results_and_vtu() {
     let vtu = std::fs::read(d.join("out/result.vtu")).unwrap();
     assert!(vtu.starts_with(b"<?xml"));
     let text = String::from_utf8_lossy(&vtu);
-    assert!(text.contains("NumberOfCells=\"16\""));
+    // 16 quadrilaterals and the 20 boundary edges
+    assert!(text.contains("NumberOfCells=\"36\""));
+    assert!(text.contains("Name=\"cell_dim\"") && text.contains("Name=\"group_Left\""));
     assert!(text.contains("Name=\"displacement\""));
     assert!(text.contains("Name=\"von_mises\""));
     assert!(text.trim_end().ends_with("</VTKFile>"));

@@ -2,7 +2,8 @@
 //! turned about its axis x = 0 is a steel sphere (R = 50) on an aluminium cylinder (radius
 //! 100, height 200), pressed by a force on the axis at the sphere's top. Against Hertz
 //! (a = (3FR / 4E*)^(1/3), p0 = 3F / 2πa²; a/R = 0.07, and a body 30 a wide and 60 a deep
-//! is a half-space to well below 1 % in 3D), with mortar on a refined quadratic mesh.
+//! is a half-space to well below 1 % in 3D), with mortar on a refined quadratic mesh; the
+//! pair's outputs carry the force and give the contact area of that radius.
 
 use std::path::Path;
 use tribo::case;
@@ -74,4 +75,27 @@ vtu = false
     let base = mesh.node_group("Encast").unwrap();
     let ry: f64 = base.iter().map(|&n| out.reactions[2 * n + 1]).sum();
     assert!((ry / force - 1.0).abs() < 1e-6, "base reaction {ry}");
+    // the pair's outputs, totals over 2πr: its normal resultant is the force (1e-8), its
+    // contact area that of a disc within one slave cell of the Hertz radius
+    let s = &out.contact[0].summary;
+    let h = mesh
+        .cell_group("Bottom_C")
+        .unwrap()
+        .iter()
+        .find_map(|&c| {
+            let n = mesh.cell_nodes(c);
+            let (p, q) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+            (p[0].min(q[0]) <= a && a <= p[0].max(q[0])).then(|| (q[0] - p[0]).hypot(q[1] - p[1]))
+        })
+        .unwrap();
+    let pi = std::f64::consts::PI;
+    println!(
+        "normal force {:?}, contact area {} (π a² = {}, cell {h} at r = a)",
+        s.normal_force,
+        s.contact_length,
+        pi * a * a
+    );
+    // (on whichever body carries the multipliers: up on the sphere, down on the block)
+    assert!((s.normal_force[1].abs() / force - 1.0).abs() < 1e-8);
+    assert!(s.contact_length > pi * (a - h).powi(2) && s.contact_length < pi * (a + h).powi(2));
 }

@@ -88,7 +88,22 @@ fx = 1.0
     );
     let result = tribo::mesh::read(&d.join("c/result.vtu")).unwrap();
     assert_eq!(result.cell_groups[ODD].len(), 2);
-    assert_eq!(result.num_cells(), 2, "result.vtu holds the 2D cells");
+    // the 2D cells, then the edges with their groups
+    assert_eq!(
+        result.cells_of_dim(2).count(),
+        2,
+        "result.vtu holds the 2D cells"
+    );
+    assert_eq!(result.cells_of_dim(1).count(), mesh.cells_of_dim(1).count());
+    for g in mesh.group_names() {
+        if mesh.group_dim(&g) == Some(1) {
+            assert_eq!(
+                result.cell_groups[&g].len(),
+                mesh.cell_groups[&g].len(),
+                "{g}"
+            );
+        }
+    }
 }
 
 /// The arrays of a unit square (one Quad4) and its bottom edge (one Seg2, group

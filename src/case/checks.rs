@@ -339,9 +339,18 @@ fn check_solver_and_output(case: &CaseFile) -> Result<()> {
                 p.name
             )));
         }
-        if let Some(a) = p.at {
-            finite(a[0], &what, "at")?;
-            finite(a[1], &what, "at")?;
+        if p.name.starts_with("contact") && p.name[7..].starts_with(|c: char| c.is_ascii_digit()) {
+            return Err(Error::model(format!(
+                "{what}: name '{}' would clash with a contact column of history.csv \
+                 (contactN_QUANTITY)",
+                p.name
+            )));
+        }
+        for (key, v) in [("at", p.at), ("center", p.center)] {
+            if let Some(a) = v {
+                finite(a[0], &what, key)?;
+                finite(a[1], &what, key)?;
+            }
         }
         // with `at`, stress_group also picks the cells whose nodes are searched
         if p.stress_group.is_some() && p.at.is_none() && matches!(p.field.as_str(), "dx" | "dy") {
@@ -355,6 +364,10 @@ fn check_solver_and_output(case: &CaseFile) -> Result<()> {
     for (i, c) in o.curve.iter().enumerate() {
         let what = format!("[[output.curve]] {}", i + 1);
         safe_name(&c.name, &what)?;
+        if let Some(a) = c.center {
+            finite(a[0], &what, "center")?;
+            finite(a[1], &what, "center")?;
+        }
         if let Some(j) = o.curve[..i].iter().position(|q| q.name == c.name) {
             return Err(Error::model(format!(
                 "{what}: [[output.curve]] {} has the same name '{}'",

@@ -6,7 +6,6 @@
 //! | `checks.rs` | every value finite and in range, every key meaningful, before any work |
 //! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
 //! | `pairs.rs` | the contact pairs |
-//! | `probe.rs` | probes: their nodes and values |
 //! | `solve.rs` | a run: the solve and its outcome, or what a failed one kept |
 //! | `sizes.rs` | memory estimates of generated meshes and of the model, checked before work |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
@@ -14,15 +13,12 @@
 pub mod checks;
 pub mod loading;
 pub mod pairs;
-pub mod probe;
 pub mod schema;
 mod sizes;
 pub mod solve;
 pub mod ssnp154;
 
 pub use pairs::build_pairs;
-pub use probe::probe;
-use probe::probe_nodes;
 pub use solve::{run, run_keeping, Failure, Multipliers, Outcome, StepOutcome};
 
 use crate::assembly::dofs::{DofMap, Relation};
@@ -46,6 +42,27 @@ pub fn load(path: &Path) -> Result<(CaseFile, PathBuf)> {
     })?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     Ok((case, dir))
+}
+
+/// The probes of a case, checked against the mesh (errors name the probe).
+pub fn probes(case: &CaseFile, mesh: &Mesh) -> Result<Vec<crate::post::probe::Probe>> {
+    case.output
+        .probe
+        .iter()
+        .map(|p| {
+            crate::post::probe::Probe::new(
+                mesh,
+                &crate::post::probe::ProbeInput {
+                    name: &p.name,
+                    group: p.group.as_deref(),
+                    at: p.at,
+                    field: &p.field,
+                    stress_group: p.stress_group.as_deref(),
+                    centre: p.center,
+                },
+            )
+        })
+        .collect()
 }
 
 fn need<T: Copy>(v: Option<T>, key: &str, generator: &str) -> Result<T> {

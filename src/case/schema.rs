@@ -294,6 +294,9 @@ pub struct CurveSpec {
     pub name: String,
     /// An edge group forming one chain.
     pub group: String,
+    /// Adds the polar stress components sirr, sitt, sirt about this point.
+    #[serde(default, deserialize_with = "opt_pair")]
+    pub center: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
@@ -331,10 +334,15 @@ pub struct ProbeSpec {
     /// `stress_group` when given).
     #[serde(default, deserialize_with = "opt_pair")]
     pub at: Option<[f64; 2]>,
-    /// dx, dy, sixx, siyy, sizz, sixy, vmis
+    /// dx, dy; Cauchy stress sixx, siyy, sizz, sixy, vmis; second Piola–Kirchhoff stress
+    /// pk2xx, pk2yy, pk2zz, pk2xy; polar components sirr, sitt, sirt (with `center`);
+    /// contact_pressure, contact_shear, contact_gap, contact_status (slave nodes).
     pub field: String,
     /// For stress fields: average the extrapolated values over the cells of this group only.
     pub stress_group: Option<String>,
+    /// The pole of the polar fields sirr, sitt, sirt.
+    #[serde(default, deserialize_with = "opt_pair")]
+    pub center: Option<[f64; 2]>,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]

@@ -3,12 +3,18 @@
 //! gave (`Failure::partial`), so that a caller can keep the results it has.
 
 use super::schema::CaseFile;
-use super::{build_pairs, build_problem, loading, probe, probe_nodes};
+use super::{build_pairs, build_problem, loading, probes};
 use crate::contact::problem::ContactProblem;
 use crate::contact::surface::Surface;
 use crate::error::{Error, Result};
+use crate::fem::material::Modelisation;
+use crate::fem::solid::{Kinematics, StressMeasure};
 use crate::mesh::Mesh;
-use crate::post::stress::{cell_node_stresses, nodal_stresses};
+use crate::post::contact_fields::{contact_fields, ContactFields};
+pub use crate::post::contact_state::Multipliers;
+use crate::post::contact_summary::PairResult;
+use crate::post::probe::StateFields;
+use crate::post::stress::{cell_node_stresses, cell_node_stresses_as, nodal_stresses};
 use crate::solver::linear::Method;
 use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
 use crate::solver::problem::SolidProblem;
@@ -18,8 +24,10 @@ pub struct Outcome {
     pub report: NewtonReport,
     /// The state after each converged load step (when the case writes VTU files).
     pub steps: Vec<StepOutcome>,
-    /// Per contact pair: (slave node, pressure) from the multipliers.
+    /// Per contact pair: (slave node, pressure) from the multipliers (open nodes: 0).
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
+    /// Per contact pair: the slave nodes' contact values and what they add up to.
+    pub contact: Vec<PairResult>,
     /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
     pub contact_multipliers: Vec<Multipliers>,
     /// Per contact pair: (slave, master) surfaces.
@@ -30,6 +38,8 @@ pub struct Outcome {
     pub reactions: Vec<f64>,
     /// Nodal stresses averaged over all cells sharing a node.
     pub stress: Vec<[f64; 4]>,
+    /// The same for the second Piola–Kirchhoff stress (large kinematics only).
+    pub pk2: Option<Vec<[f64; 4]>>,
     pub probes: Vec<(String, f64)>,
 }
 
@@ -40,69 +50,68 @@ pub struct StepOutcome {
     pub u: Vec<f64>,
     pub reactions: Vec<f64>,
     pub stress: Vec<[f64; 4]>,
+    pub pk2: Option<Vec<[f64; 4]>>,
     pub contact_pressure: Vec<Vec<(usize, f64)>>,
     pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
     pub contact_multipliers: Vec<Multipliers>,
+    pub contact: Vec<PairResult>,
 }
 
-/// (slave node, [normal, tangential] multiplier) of one contact pair.
-pub type Multipliers = Vec<(usize, [f64; 2])>;
-
+/// Nodal stresses, probes and the fields of the problem's current state.
 fn step_outcome(
     case: &CaseFile,
     mesh: &Mesh,
     solid: &SolidProblem,
     time: f64,
-    contact_pressure: Vec<Vec<(usize, f64)>>,
-    contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
+    contact: ContactFields,
 ) -> Result<StepOutcome> {
     let elno = cell_node_stresses(mesh, &solid.asm, &solid.u)?;
     let stress = nodal_stresses(mesh, &solid.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(solid, p, &elno, &stress)?));
+    let large = solid
+        .asm
+        .cell_model
+        .iter()
+        .any(|m| m.kinematics == Kinematics::Large);
+    let pk2_elno = if large {
+        Some(cell_node_stresses_as(
+            mesh,
+            &solid.asm,
+            &solid.u,
+            StressMeasure::Pk2,
+        )?)
+    } else {
+        None
+    };
+    let pk2 = match &pk2_elno {
+        Some(e) => Some(nodal_stresses(mesh, &solid.asm, e, None)?),
+        None => None,
+    };
+    let fields = StateFields {
+        mesh,
+        asm: &solid.asm,
+        u: &solid.u,
+        elno: &elno,
+        stress: &stress,
+        pk2: pk2_elno.as_ref().zip(pk2.as_deref()),
+        deformed: large,
+        contact: &contact.pairs,
+    };
+    let mut values = vec![];
+    for p in probes(case, mesh)? {
+        values.push((p.name.clone(), p.value(&fields)?));
     }
     Ok(StepOutcome {
         time,
-        probes,
+        probes: values,
         u: solid.u.clone(),
         reactions: solid.reactions(),
         stress,
-        contact_pressure,
-        contact_shear,
-        contact_multipliers: vec![],
+        pk2,
+        contact_pressure: contact.pressure,
+        contact_shear: contact.shear,
+        contact_multipliers: contact.multipliers,
+        contact: contact.pairs,
     })
-}
-
-/// Per pair: nodal pressures, (μ, nodal shear) from the multipliers, and the raw
-/// multipliers.
-#[allow(clippy::type_complexity)]
-fn contact_tractions(
-    cp: &ContactProblem,
-) -> Result<(
-    Vec<Vec<(usize, f64)>>,
-    Vec<(f64, Vec<(usize, f64)>)>,
-    Vec<Multipliers>,
-)> {
-    let (mut pressures, mut shear, mut multipliers) = (vec![], vec![], vec![]);
-    for (p, &b) in cp.pairs.iter().zip(&cp.mult_base) {
-        let lam = &cp.lam[b..b + p.num_multipliers()];
-        pressures.push(p.nodal_pressures(lam));
-        shear.push((p.friction(), p.nodal_shear(lam)));
-        multipliers.push(p.nodal_multipliers(lam));
-    }
-    // never a non-finite value in an output
-    for (i, (p, s)) in pressures.iter().zip(&shear).enumerate() {
-        if let Some(&(n, v)) = p.iter().chain(&s.1).find(|(_, v)| !v.is_finite()) {
-            return Err(Error::Solve(format!(
-                "[[contact]] {}: the contact traction at node {} is {v} (a degenerate \
-                 contact there: a node with no share of the surface?)",
-                i + 1,
-                n + 1
-            )));
-        }
-    }
-    Ok((pressures, shear, multipliers))
 }
 
 /// A run that failed: why, and once the solve had begun, its report, the time of the step
@@ -161,13 +170,7 @@ pub fn run_keeping(
         crate::post::curve::chain(mesh, &c.group)
             .map_err(|e| Error::model(format!("[[output.curve]] '{}': {e}", c.name)))?;
     }
-    for p in &case.output.probe {
-        probe_nodes(mesh, p)?;
-        if let Some(g) = &p.stress_group {
-            mesh.cell_group(g)
-                .map_err(|e| Error::model(format!("probe '{}': {e}", p.name)))?;
-        }
-    }
+    let probes = probes(case, mesh)?;
     let (times, output_times) = loading::schedule(case, &problem.loading)?;
     let settings = NewtonSettings {
         steps: case.solver.steps.max(1),
@@ -187,6 +190,7 @@ pub fn run_keeping(
     };
     let mut report = NewtonReport::default();
     if case.contact.is_empty() {
+        off_surface_probes(&probes, &[])?;
         let solved = newton::solve_into(&mut problem, &settings, Method::Cholesky, &mut report);
         let states = output_states(std::mem::take(&mut report.states), is_output);
         let kept = (solved.is_ok() || !states.is_empty())
@@ -195,6 +199,8 @@ pub fn run_keeping(
     } else {
         let pairs = build_pairs(case, mesh)?;
         supported_slave_nodes(case, &problem, &pairs)?;
+        let slaves: Vec<&[usize]> = pairs.iter().map(|p| &p.surfaces().0.nodes[..]).collect();
+        off_surface_probes(&probes, &slaves)?;
         let mut cp = ContactProblem::new(problem, pairs);
         if let Some(e) = cp.initial_overlap() {
             return Err(Error::model(e).into());
@@ -208,6 +214,23 @@ pub fn run_keeping(
         let kept = (solved.is_ok() || !states.is_empty())
             .then(|| with_contact(case, mesh, &mut cp, &states, settings.keep_states));
         finish(solved, kept, report)
+    }
+}
+
+/// A probe of a contact field on a node of no slave surface (`slaves`: their nodes,
+/// sorted) is refused before the solve: the node has no contact values.
+fn off_surface_probes(probes: &[crate::post::probe::Probe], slaves: &[&[usize]]) -> Result<()> {
+    match probes
+        .iter()
+        .find_map(|p| p.off_surface(slaves).map(|n| (p, n)))
+    {
+        Some((p, n)) => Err(Error::model(format!(
+            "probe '{}': node {} is on no slave surface of a [[contact]] (the surface that \
+             carries the multipliers): it has no contact values",
+            p.name,
+            n + 1
+        ))),
+        None => Ok(()),
     }
 }
 
@@ -266,10 +289,16 @@ fn without_contact(
     for (lf, x, output) in states {
         problem.evaluate(x, *lf, &mut r, false)?;
         if *output && keep {
-            steps.push(step_outcome(case, mesh, problem, *lf, vec![], vec![])?);
+            steps.push(step_outcome(
+                case,
+                mesh,
+                problem,
+                *lf,
+                ContactFields::none(),
+            )?);
         }
     }
-    final_outcome(case, mesh, problem, steps)
+    final_outcome(case, mesh, problem, steps, ContactFields::none())
 }
 
 /// `without_contact` with contact: the pressures, shear and multipliers of each state too.
@@ -280,6 +309,7 @@ fn with_contact(
     states: &[(f64, Vec<f64>, bool)],
     keep: bool,
 ) -> Result<Outcome> {
+    let axisymmetric = case.model.modelisation == Modelisation::Axisymmetric;
     let mut steps = vec![];
     let mut r = vec![0.0; cp.num_unknowns()];
     for (lf, x, output) in states {
@@ -287,13 +317,11 @@ fn with_contact(
         if !(*output && keep) {
             continue;
         }
-        let (p, sh, m) = contact_tractions(cp)?;
-        let mut step = step_outcome(case, mesh, &cp.solid, *lf, p, sh)?;
-        step.contact_multipliers = m;
-        steps.push(step);
+        let contact = contact_fields(cp, axisymmetric)?;
+        steps.push(step_outcome(case, mesh, &cp.solid, *lf, contact)?);
     }
-    let (pressures, shear, multipliers) = contact_tractions(cp)?;
-    let mut o = final_outcome(case, mesh, &cp.solid, steps)?;
+    let contact = contact_fields(cp, axisymmetric)?;
+    let mut o = final_outcome(case, mesh, &cp.solid, steps, contact)?;
     o.contact_surfaces = cp
         .pairs
         .iter()
@@ -302,9 +330,6 @@ fn with_contact(
             (s.clone(), m.clone())
         })
         .collect();
-    o.contact_pressure = pressures;
-    o.contact_shear = shear;
-    o.contact_multipliers = multipliers;
     Ok(o)
 }
 
@@ -314,24 +339,22 @@ fn final_outcome(
     mesh: &Mesh,
     problem: &SolidProblem,
     steps: Vec<StepOutcome>,
+    contact: ContactFields,
 ) -> Result<Outcome> {
-    let elno = cell_node_stresses(mesh, &problem.asm, &problem.u)?;
-    let stress = nodal_stresses(mesh, &problem.asm, &elno, None)?;
-    let mut probes = vec![];
-    for p in &case.output.probe {
-        probes.push((p.name.clone(), probe(problem, p, &elno, &stress)?));
-    }
+    let last = step_outcome(case, mesh, problem, 0.0, contact)?;
     Ok(Outcome {
         report: NewtonReport::default(),
         steps,
-        contact_pressure: vec![],
-        contact_multipliers: vec![],
+        contact_pressure: last.contact_pressure,
+        contact_multipliers: last.contact_multipliers,
         contact_surfaces: vec![],
-        contact_shear: vec![],
-        reactions: problem.reactions(),
-        u: problem.u.clone(),
-        stress,
-        probes,
+        contact_shear: last.contact_shear,
+        contact: last.contact,
+        reactions: last.reactions,
+        u: last.u,
+        stress: last.stress,
+        pk2: last.pk2,
+        probes: last.probes,
     })
 }
 

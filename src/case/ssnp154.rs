@@ -106,6 +106,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                     at: None,
                     field: "dy".into(),
                     stress_group: None,
+                    center: None,
                 },
                 ProbeSpec {
                     name: "SIYY_B".into(),
@@ -113,6 +114,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                     at: None,
                     field: "siyy".into(),
                     stress_group: Some("Block".into()),
+                    center: None,
                 },
             ],
         },

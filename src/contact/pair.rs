@@ -85,6 +85,12 @@ pub trait ContactPair {
     fn overlap_allowance(&self) -> f64 {
         0.0
     }
+    /// Whether the contact forces act along normals of the reference geometry (mortar with
+    /// small kinematics) rather than of the current one: the frame the outputs split the
+    /// nodal forces in.
+    fn reference_normals(&self) -> bool {
+        false
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

@@ -272,6 +272,14 @@ fn kernel<const NN: usize>(
     Ok(())
 }
 
+/// Which stress `gauss_stresses_as` gives with large kinematics (small kinematics has one).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StressMeasure {
+    Cauchy,
+    /// Second Piola–Kirchhoff: S = J F⁻¹ σ F⁻ᵀ, work-conjugate to the Green–Lagrange strain.
+    Pk2,
+}
+
 /// Stress at each quadrature point of the stiffness rule, [xx, yy, zz, xy]: Cauchy stress
 /// for large kinematics (σ = J⁻¹ F S Fᵀ), the linear stress otherwise. In plane stress
 /// σ_zz = 0. Writes `rule.len()` entries into `out`.
@@ -282,6 +290,18 @@ pub fn gauss_stresses(
     sm: &SolidModel,
     out: &mut [[f64; 4]],
 ) -> Result<(), BadJacobian> {
+    gauss_stresses_as(kind, x, u, sm, StressMeasure::Cauchy, out)
+}
+
+/// `gauss_stresses` in the given measure.
+pub fn gauss_stresses_as(
+    kind: CellKind,
+    x: &[[f64; 2]],
+    u: &[[f64; 2]],
+    sm: &SolidModel,
+    measure: StressMeasure,
+    out: &mut [[f64; 4]],
+) -> Result<(), BadJacobian> {
     let nn = kind.num_nodes();
     let d = sm.material.matrix(sm.model);
     let rule = stiffness_rule(kind);
@@ -289,9 +309,9 @@ pub fn gauss_stresses(
         let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(BadJacobian)?;
         let (f, fzz, e) = strain_at(&g, nn, u, sm);
         let s = apply(&d, &e);
-        out[q] = match sm.kinematics {
-            Kinematics::Small => s,
-            Kinematics::Large => {
+        out[q] = match (sm.kinematics, measure) {
+            (Kinematics::Small, _) | (_, StressMeasure::Pk2) => s,
+            (Kinematics::Large, StressMeasure::Cauchy) => {
                 let j = (f[0][0] * f[1][1] - f[0][1] * f[1][0]) * fzz;
                 let sm2 = [[s[0], s[3]], [s[3], s[1]]];
                 let mut c = [[0.0; 2]; 2];

@@ -24,6 +24,23 @@ pub fn status_name(s: i32) -> &'static str {
 /// (positive: open, negative: penetration): distance to the closest point of the master
 /// cells, signed by the master's outward normal there.
 pub fn gaps(mesh: &Mesh, u: &[f64], slave: &Surface, master: &Surface) -> Vec<(usize, f64)> {
+    closest_points(mesh, u, slave, master)
+        .into_iter()
+        .map(|(n, g, _)| (n, g))
+        .collect()
+}
+
+/// (slave node, signed gap, master outward unit normal at the closest point) for each
+/// slave node, deformed geometry: the gap as `gaps` gives it, and the normal the contact
+/// forces are split along: on straight (Seg2) cells the smoothed one (interpolated between
+/// the vertices' averaged normals, as point-to-segment and node-to-segment use by
+/// default), on curved cells the cell's own.
+pub fn closest_points(
+    mesh: &Mesh,
+    u: &[f64],
+    slave: &Surface,
+    master: &Surface,
+) -> Vec<(usize, f64, [f64; 2])> {
     let pos = |n: usize| {
         [
             mesh.coords[n][0] + u[2 * n],
@@ -39,34 +56,65 @@ pub fn gaps(mesh: &Mesh, u: &[f64], slave: &Surface, master: &Surface) -> Vec<(u
             (mesh.kind(c), x, ccw)
         })
         .collect();
+    let outward = |t: [f64; 2], ccw: bool| {
+        let l = t[0].hypot(t[1]);
+        if ccw {
+            [t[1] / l, -t[0] / l]
+        } else {
+            [-t[1] / l, t[0] / l]
+        }
+    };
+    // each master vertex's averaged outward normal
+    let mut vertex: std::collections::HashMap<usize, [f64; 2]> = Default::default();
+    for (i, &c) in master.cells.iter().enumerate() {
+        let (kind, x, ccw) = &masters[i];
+        for (end, xi) in [(0, -1.0), (1, 1.0)] {
+            let (_, t) = point_and_tangent(*kind, x, xi);
+            let nrm = outward(t, *ccw);
+            let e = vertex.entry(mesh.cell_nodes(c)[end]).or_insert([0.0; 2]);
+            e[0] += nrm[0];
+            e[1] += nrm[1];
+        }
+    }
     slave
         .nodes
         .iter()
         .map(|&n| {
             let p = pos(n);
-            let mut best = (f64::INFINITY, f64::INFINITY);
-            for (kind, x, ccw) in &masters {
+            let mut best = (f64::INFINITY, f64::INFINITY, [0.0; 2]);
+            for (i, (kind, x, ccw)) in masters.iter().enumerate() {
                 let xi = project(*kind, x, p).xi.clamp(-1.0, 1.0);
                 let (q, t) = point_and_tangent(*kind, x, xi);
                 let d = [p[0] - q[0], p[1] - q[1]];
                 let dist = d[0].hypot(d[1]);
                 if dist < best.0 {
-                    let l = t[0].hypot(t[1]);
                     // outward normal: right-hand normal of dx/dξ when the cell runs ccw
-                    let nrm = if *ccw {
-                        [t[1] / l, -t[0] / l]
-                    } else {
-                        [-t[1] / l, t[0] / l]
-                    };
+                    let nrm = outward(t, *ccw);
                     let sign = if d[0] * nrm[0] + d[1] * nrm[1] < 0.0 {
                         -1.0
                     } else {
                         1.0
                     };
-                    best = (dist, sign * dist);
+                    let smooth = if *kind == crate::mesh::CellKind::Seg2 {
+                        let ends = mesh.cell_nodes(master.cells[i]);
+                        let (a, b) = (vertex[&ends[0]], vertex[&ends[1]]);
+                        let v = [
+                            0.5 * (1.0 - xi) * a[0] + 0.5 * (1.0 + xi) * b[0],
+                            0.5 * (1.0 - xi) * a[1] + 0.5 * (1.0 + xi) * b[1],
+                        ];
+                        let l = v[0].hypot(v[1]);
+                        if l > 0.0 {
+                            [v[0] / l, v[1] / l]
+                        } else {
+                            nrm
+                        }
+                    } else {
+                        nrm
+                    };
+                    best = (dist, sign * dist, smooth);
                 }
             }
-            (n, best.1)
+            (n, best.1, best.2)
         })
         .collect()
 }
@@ -95,6 +143,10 @@ pub fn statuses(pressure: &[(usize, f64)], shear: &[(usize, f64)], mu: f64) -> V
         })
         .collect()
 }
+
+/// (slave node, [normal, tangential] multiplier) of one contact pair, as the formulation
+/// stores them.
+pub type Multipliers = Vec<(usize, [f64; 2])>;
 
 #[cfg(test)]
 mod tests {

@@ -1,15 +1,12 @@
 //! The result fields of one state written as a VTU file, and a load history as a `.pvd`
-//! time series of them (the load factor as time). Point data: displacement, stress (XX,
-//! YY, ZZ, XY), von Mises, reactions, and on the slave nodes of each contact pair the
-//! pressure and shear from the multipliers (in stress units), the gap, the status (0 open,
-//! 1 stick, 2 slip) and the multipliers as the formulation stores them (normal: −p for
-//! point-to-segment, a force for node-to-segment, p for mortar; tangential: Λ with
-//! |Λ| ≤ 1 for point-to-segment, the traction for mortar). Cell data: groups and the
-//! material of each 2D cell.
+//! time series of them (the load factor as time). README.md ("result.vtu") lists every
+//! field. Cells: the 2D cells, then the boundary edges (Seg2/Seg3 line cells) with their
+//! groups as `group_NAME` flags and `cell_dim` telling them apart. Contact fields exist on
+//! the slave nodes only: NaN elsewhere; open slave nodes carry exactly 0.
 
-use super::contact_state::{gaps, statuses};
+use super::contact_state::Multipliers;
+use super::contact_summary::PairResult;
 use super::vtu::{self, Field};
-use crate::contact::surface::Surface;
 use crate::error::Result;
 use crate::fem::material::von_mises;
 use crate::mesh::Mesh;
@@ -19,18 +16,19 @@ use std::path::{Path, PathBuf};
 pub struct State<'a> {
     pub u: &'a [f64],
     pub reactions: &'a [f64],
+    /// Cauchy stress [xx, yy, zz, xy] at the nodes.
     pub stress: &'a [[f64; 4]],
-    /// Per contact pair: (slave node, pressure) and (μ, (slave node, shear)).
-    pub pressure: &'a [Vec<(usize, f64)>],
-    pub shear: &'a [(f64, Vec<(usize, f64)>)],
+    /// Second Piola–Kirchhoff stress at the nodes (large kinematics).
+    pub pk2: Option<&'a [[f64; 4]]>,
+    /// Per contact pair: the slave nodes' contact values.
+    pub contact: &'a [PairResult],
     /// Per contact pair: (slave node, [normal, tangential] multiplier) as stored.
-    pub multipliers: &'a [crate::case::Multipliers],
+    pub multipliers: &'a [Multipliers],
 }
 
 /// What stays the same from state to state.
 pub struct Setting<'a> {
     pub mesh: &'a Mesh,
-    pub surfaces: &'a [(Surface, Surface)],
     /// Group of each material, in the case file's order (cell data `material` = index + 1).
     pub material_groups: &'a [String],
 }
@@ -39,41 +37,45 @@ fn xyz(v: &[f64]) -> Vec<f64> {
     v.chunks(2).flat_map(|d| [d[0], d[1], 0.0]).collect()
 }
 
+/// Symmetric tensors as ParaView expects them: XX, YY, ZZ, XY, YZ, XZ.
+fn tensor(s: &[[f64; 4]]) -> Vec<f64> {
+    s.iter()
+        .flat_map(|s| [s[0], s[1], s[2], s[3], 0.0, 0.0])
+        .collect()
+}
+
 pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
     let mesh = s.mesh;
-    let cells: Vec<usize> = mesh.cells_of_dim(2).collect();
+    let cells: Vec<usize> = mesh.cells_of_dim(2).chain(mesh.cells_of_dim(1)).collect();
     let disp = xyz(st.u);
-    // Symmetric tensor as ParaView expects: XX, YY, ZZ, XY, YZ, XZ.
-    let sig: Vec<f64> = st
-        .stress
-        .iter()
-        .flat_map(|s| [s[0], s[1], s[2], s[3], 0.0, 0.0])
-        .collect();
+    let sig = tensor(st.stress);
+    let pk2 = st.pk2.map(tensor);
     let vm: Vec<f64> = st.stress.iter().map(von_mises).collect();
     let react = xyz(st.reactions);
     let n = mesh.num_nodes();
-    let (mut cp, mut shear, mut gap, mut status) =
-        (vec![0.0; n], vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    let (mut lam_n, mut lam_t) = (vec![0.0; n], vec![0.0; n]);
-    for (i, pressures) in st.pressure.iter().enumerate() {
-        let (mu, sh) = st.shear.get(i).map_or((0.0, &[][..]), |s| (s.0, &s.1[..]));
-        for &(node, p) in pressures {
-            cp[node] = p;
-        }
-        for &(node, t) in sh {
-            shear[node] = t;
-        }
-        for (node, code) in statuses(pressures, sh, mu) {
-            status[node] = code as f64;
+    let nan = f64::NAN;
+    let (mut cp, mut shear, mut gap, mut status, mut pair) = (
+        vec![nan; n],
+        vec![nan; n],
+        vec![nan; n],
+        vec![nan; n],
+        vec![nan; n],
+    );
+    let mut force = vec![nan; 3 * n];
+    let (mut lam_n, mut lam_t) = (vec![nan; n], vec![nan; n]);
+    for (i, result) in st.contact.iter().enumerate() {
+        for c in &result.nodes {
+            let k = c.node;
+            cp[k] = c.pressure;
+            shear[k] = c.shear;
+            gap[k] = c.gap;
+            status[k] = c.status as f64;
+            pair[k] = (i + 1) as f64;
+            force[3 * k..3 * k + 3].copy_from_slice(&[c.force[0], c.force[1], 0.0]);
         }
         for &(node, m) in st.multipliers.get(i).map_or(&[][..], |m| &m[..]) {
             lam_n[node] = m[0];
             lam_t[node] = m[1];
-        }
-        if let Some((slave, master)) = s.surfaces.get(i) {
-            for (node, g) in gaps(mesh, st.u, slave, master) {
-                gap[node] = g;
-            }
         }
     }
     let mut material = vec![0i32; mesh.num_cells()];
@@ -83,6 +85,7 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
         }
     }
     let material: Vec<i32> = cells.iter().map(|&c| material[c]).collect();
+    let dims: Vec<i32> = cells.iter().map(|&c| mesh.kind(c).dim() as i32).collect();
     let group_fields = vtu::cell_group_flags(mesh, &cells);
     let mut fields = vec![
         Field::Point {
@@ -97,6 +100,16 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
             values: &sig,
             components: &["SIXX", "SIYY", "SIZZ", "SIXY", "SIYZ", "SIXZ"],
         },
+    ];
+    if let Some(pk2) = &pk2 {
+        fields.push(Field::Point {
+            name: "stress_pk2",
+            ncomp: 6,
+            values: pk2,
+            components: &["SXX", "SYY", "SZZ", "SXY", "SYZ", "SXZ"],
+        });
+    }
+    fields.extend([
         Field::Point {
             name: "von_mises",
             ncomp: 1,
@@ -109,13 +122,14 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
             values: &react,
             components: &["RX", "RY", "RZ"],
         },
-    ];
-    if !st.pressure.is_empty() {
+    ]);
+    if !st.contact.is_empty() {
         for (name, values) in [
             ("contact_pressure", &cp),
             ("contact_shear", &shear),
             ("contact_gap", &gap),
             ("contact_status", &status),
+            ("contact_pair", &pair),
             ("contact_multiplier_normal", &lam_n),
             ("contact_multiplier_tangential", &lam_t),
         ] {
@@ -126,7 +140,17 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
                 components: &[],
             });
         }
+        fields.push(Field::Point {
+            name: "contact_force",
+            ncomp: 3,
+            values: &force,
+            components: &["FX", "FY", "FZ"],
+        });
     }
+    fields.push(Field::CellInt {
+        name: "cell_dim",
+        values: &dims,
+    });
     fields.push(Field::CellInt {
         name: "material",
         values: &material,

@@ -6,7 +6,7 @@ use crate::assembly::Assembler;
 use crate::error::{Error, Result};
 use crate::fem::extrapolate;
 use crate::fem::material::von_mises;
-use crate::fem::solid::gauss_stresses;
+use crate::fem::solid::{gauss_stresses_as, StressMeasure};
 use crate::mesh::Mesh;
 
 /// Extrapolated stresses of every assembled cell: for assembled cell i,
@@ -17,6 +17,16 @@ pub struct CellNodeStresses {
 }
 
 pub fn cell_node_stresses(mesh: &Mesh, asm: &Assembler, u: &[f64]) -> Result<CellNodeStresses> {
+    cell_node_stresses_as(mesh, asm, u, StressMeasure::Cauchy)
+}
+
+/// `cell_node_stresses` in the given measure (Cauchy or second Piola–Kirchhoff).
+pub fn cell_node_stresses_as(
+    mesh: &Mesh,
+    asm: &Assembler,
+    u: &[f64],
+    measure: StressMeasure,
+) -> Result<CellNodeStresses> {
     let mut offsets = vec![0];
     let mut values = vec![];
     let mut gauss = [[0.0; 4]; 9];
@@ -27,14 +37,13 @@ pub fn cell_node_stresses(mesh: &Mesh, asm: &Assembler, u: &[f64]) -> Result<Cel
         for (a, &n) in mesh.cell_nodes(c).iter().enumerate() {
             ue[a] = [u[2 * n], u[2 * n + 1]];
         }
-        gauss_stresses(kind, &x[..nn], &ue[..nn], &asm.cell_model[i], &mut gauss).map_err(
-            |_| {
-                Error::solve(format!(
-                    "cell {} ({kind}) has a non-positive Jacobian",
-                    c + 1
-                ))
-            },
-        )?;
+        let sm = &asm.cell_model[i];
+        gauss_stresses_as(kind, &x[..nn], &ue[..nn], sm, measure, &mut gauss).map_err(|_| {
+            Error::solve(format!(
+                "cell {} ({kind}) has a non-positive Jacobian",
+                c + 1
+            ))
+        })?;
         let e = extrapolate::matrix(kind);
         for row in e.iter().take(nn) {
             let mut s = [0.0; 4];

@@ -26,7 +26,7 @@ pub enum Field<'a> {
     },
 }
 
-/// Writes the 2D cells `cells` of `mesh` (all nodes are written) with the given fields.
+/// Writes the cells `cells` of `mesh` (all nodes are written) with the given fields.
 pub fn write(path: &Path, mesh: &Mesh, cells: &[usize], fields: &[Field]) -> Result<()> {
     crate::error::write_atomic(path, &to_bytes(mesh, cells, fields))
 }

@@ -5,12 +5,14 @@
 //! | `staging.rs` | the output folder written whole in a temporary one, then swapped in |
 //! | `signals.rs` | SIGINT / SIGTERM delete the temporary folder of a run in progress |
 //! | `write.rs` | the files of an outcome and their results.json entries |
+//! | `contact.rs` | per contact pair: results.json entries and history.csv columns |
 //!
 //! results.json has `"status": "converged"`, or `"failed"` with `"failure"` (the time of
 //! the step that failed, the reason, the last converged time): a solve that fails after
 //! some converged steps still writes the files of its last converged state and of its
 //! converged output steps, and exits non-zero.
 
+mod contact;
 pub mod signals;
 mod staging;
 mod write;

@@ -1,14 +1,17 @@
 //! The files of a run's outcome: result.vtu and the steps' series, curves, pressures,
 //! tractions, history.csv, and the results.json entries that describe them.
 
+use super::contact::{csv_header, csv_values, hertz_fits, pair_json};
 use crate::case::schema::CaseFile;
 use crate::case::{self, Outcome};
 use crate::error::{write_atomic, Result};
+use crate::fem::material::Modelisation;
 use crate::mesh::Mesh;
-use crate::post::contact_pressure::{half_width, surface_tractions};
+use crate::post::contact_pressure::surface_tractions;
 use crate::post::plot;
+use crate::post::probe::polar;
 use crate::post::result_vtu::{write_series, write_state, Setting, State};
-use serde_json::json;
+use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
 /// Where the files are written (the temporary folder) and where they are listed (the
@@ -44,7 +47,6 @@ pub fn outcome_files(
         let materials: Vec<String> = case.material.iter().map(|m| m.group.clone()).collect();
         let setting = Setting {
             mesh,
-            surfaces: &outcome.contact_surfaces,
             material_groups: &materials,
         };
         write_state(
@@ -60,8 +62,8 @@ pub fn outcome_files(
                     u: &s.u,
                     reactions: &s.reactions,
                     stress: &s.stress,
-                    pressure: &s.contact_pressure,
-                    shear: &s.contact_shear,
+                    pk2: s.pk2.as_deref(),
+                    contact: &s.contact,
                     multipliers: &s.contact_multipliers,
                 };
                 (s.time, st)
@@ -71,13 +73,35 @@ pub fn outcome_files(
             files.push(dir.shown(&f));
         }
     }
+    let axisymmetric = case.model.modelisation == Modelisation::Axisymmetric;
+    let large = outcome.pk2.is_some();
+    // the contact values of each slave node (the first pair's where a node is in several)
+    let mut contact_at: std::collections::HashMap<
+        usize,
+        &crate::post::contact_summary::NodeContact,
+    > = Default::default();
+    for r in outcome.contact.iter().rev() {
+        for c in &r.nodes {
+            contact_at.insert(c.node, c);
+        }
+    }
     for spec in &case.output.curve {
         let nodes = crate::post::curve::chain(mesh, &spec.group)?;
-        let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis\n");
+        let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis");
+        if large {
+            text.push_str(",pk2xx,pk2yy,pk2zz,pk2xy");
+        }
+        if spec.center.is_some() {
+            text.push_str(",sirr,sitt,sirt");
+        }
+        if !outcome.contact.is_empty() {
+            text.push_str(",contact_pressure,contact_shear,contact_gap,contact_status");
+        }
+        text.push('\n');
         for (n, s) in nodes {
             let (x, st) = (mesh.coords[n], outcome.stress[n]);
             text.push_str(&format!(
-                "{s},{},{},{},{},{},{},{},{},{},{}\n",
+                "{s},{},{},{},{},{},{},{},{},{},{}",
                 n + 1,
                 x[0],
                 x[1],
@@ -89,6 +113,28 @@ pub fn outcome_files(
                 st[3],
                 crate::fem::material::von_mises(&st)
             ));
+            if let Some(pk2) = &outcome.pk2 {
+                let p = pk2[n];
+                text.push_str(&format!(",{},{},{},{}", p[0], p[1], p[2], p[3]));
+            }
+            if let Some(c) = spec.center {
+                // the frame at the node's position in the stress's configuration
+                let at = if large {
+                    [x[0] + outcome.u[2 * n], x[1] + outcome.u[2 * n + 1]]
+                } else {
+                    x
+                };
+                let p = polar(&st, at, c);
+                text.push_str(&format!(",{},{},{}", p[0], p[1], p[2]));
+            }
+            if !outcome.contact.is_empty() {
+                // off the slave surfaces a node has no contact values
+                let v = contact_at.get(&n).map_or([f64::NAN; 4], |c| {
+                    [c.pressure, c.shear, c.gap, c.status as f64]
+                });
+                text.push_str(&format!(",{},{},{},{}", v[0], v[1], v[2], v[3]));
+            }
+            text.push('\n');
         }
         write_atomic(
             &dir.file(&format!("curve_{}.csv", spec.name), &mut files),
@@ -214,31 +260,17 @@ pub fn outcome_files(
             &dir.file(&format!("{stem}.csv"), &mut files),
             text.as_bytes(),
         )?;
-        let samples: Vec<(f64, f64)> = outcome.contact_pressure[i]
-            .iter()
-            .map(|&(n, p)| (mesh.coords[n][0].abs(), p))
-            .collect();
-        let peak = samples.iter().fold(0.0f64, |m, p| m.max(p.1));
-        // stick zone: loaded slave nodes whose shear is below μ p (|Λ| < 1)
-        let stick_extent = outcome
-            .contact_shear
-            .get(i)
-            .filter(|s| !s.1.is_empty())
-            .map(|(mu, shear)| {
-                let p: std::collections::HashMap<usize, f64> =
-                    outcome.contact_pressure[i].iter().copied().collect();
-                shear
-                    .iter()
-                    .filter(|&&(n, t)| p[&n] > 1e-3 * peak && t.abs() < mu * p[&n] * (1.0 - 1e-4))
-                    .map(|&(n, _)| mesh.coords[n][0].abs())
-                    .fold(0.0f64, f64::max)
-            });
-        contact_json.push(json!({
-            "slave": slave.group, "master": master.group,
-            "peak_pressure": peak,
-            "half_width": half_width(&samples),
-            "stick_zone_extent": stick_extent,
-        }));
+        let result = &outcome.contact[i];
+        let mut entry = pair_json(&slave.group, &master.group, &result.summary, axisymmetric);
+        if case.output.hertz.is_some() {
+            let mu = outcome.contact_shear.get(i).map_or(0.0, |s| s.0);
+            if let (Value::Object(fits), Some(e)) =
+                (hertz_fits(result, mu, &mesh.coords), entry.as_object_mut())
+            {
+                e.extend(fits);
+            }
+        }
+        contact_json.push(entry);
     }
     let mut probes = serde_json::Map::new();
     for (name, v) in &outcome.probes {
@@ -282,6 +314,9 @@ pub fn outcome_files(
         for g in &support_groups {
             text.push_str(&format!(",rx_{g},ry_{g}"));
         }
+        for i in 0..outcome.contact_surfaces.len() {
+            text.push_str(&csv_header(i + 1, axisymmetric));
+        }
         text.push('\n');
         for st in &outcome.steps {
             let mut probes = serde_json::Map::new();
@@ -293,11 +328,22 @@ pub fn outcome_files(
             for v in group_reactions(&st.reactions) {
                 text.push_str(&format!(",{},{}", v[0], v[1]));
             }
+            let mut contact = vec![];
+            for (r, (slave, master)) in st.contact.iter().zip(&outcome.contact_surfaces) {
+                text.push_str(&csv_values(&r.summary));
+                contact.push(pair_json(
+                    &slave.group,
+                    &master.group,
+                    &r.summary,
+                    axisymmetric,
+                ));
+            }
             text.push('\n');
             history.push(json!({
                 "time": st.time,
                 "probes": probes,
                 "reactions": reactions_json(&st.reactions),
+                "contact": contact,
             }));
         }
         write_atomic(&dir.file("history.csv", &mut files), text.as_bytes())?;
@@ -318,8 +364,8 @@ fn final_state(o: &case::Outcome) -> State<'_> {
         u: &o.u,
         reactions: &o.reactions,
         stress: &o.stress,
-        pressure: &o.contact_pressure,
-        shear: &o.contact_shear,
+        pk2: o.pk2.as_deref(),
+        contact: &o.contact,
         multipliers: &o.contact_multipliers,
     }
 }

@@ -627,4 +627,7 @@ impl ContactPair for Mortar {
     fn friction(&self) -> f64 {
         self.friction.unwrap_or(0.0)
     }
+    fn reference_normals(&self) -> bool {
+        self.small
+    }
 }
