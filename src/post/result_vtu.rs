@@ -31,8 +31,9 @@ pub struct State<'a> {
 pub struct Setting<'a> {
     pub mesh: &'a Mesh,
     pub surfaces: &'a [(Surface, Surface)],
-    /// Group of each material, in the case file's order (cell data `material` = index + 1).
-    pub material_groups: &'a [String],
+    /// Group of each material (None: every 2D cell), in the case file's order (cell data
+    /// `material` = index + 1).
+    pub material_groups: &'a [Option<String>],
 }
 
 fn xyz(v: &[f64]) -> Vec<f64> {
@@ -78,7 +79,11 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
     }
     let mut material = vec![0i32; mesh.num_cells()];
     for (k, g) in s.material_groups.iter().enumerate() {
-        for &c in mesh.cell_groups.get(g).map_or(&[][..], |v| &v[..]) {
+        let cells: Vec<usize> = match g {
+            Some(g) => mesh.cell_groups.get(g).cloned().unwrap_or_default(),
+            None => mesh.cells_of_dim(2).collect(),
+        };
+        for c in cells {
             material[c] = k as i32 + 1;
         }
     }

@@ -7,6 +7,7 @@
 
 use crate::assembly::dofs::DofMap;
 use crate::error::{Error, Result};
+use crate::expr::Expr;
 
 /// A scalar function of time.
 #[derive(Clone, Debug, PartialEq)]
@@ -66,6 +67,54 @@ impl TimeFunction {
     }
 }
 
+/// Where an expression is evaluated, for errors.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Place {
+    Node(usize),
+    /// An integration point of an edge cell.
+    Edge(usize),
+}
+
+impl std::fmt::Display for Place {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Place::Node(n) => write!(f, "node {}", n + 1),
+            Place::Edge(c) => write!(f, "an integration point of edge cell {}", c + 1),
+        }
+    }
+}
+
+/// An expression of time (and position) with the entry that gave it, e.g.
+/// `[[displacement]] 2 on 'Inner': dx`.
+#[derive(Clone, Debug)]
+pub struct TimeExpr {
+    pub expr: Expr,
+    pub what: String,
+}
+
+impl TimeExpr {
+    fn error(&self, v: f64, at: Option<(Place, [f64; 2])>, t: f64) -> Error {
+        let place = match at {
+            Some((p, x)) => format!(" at {p} (x = {}, y = {})", x[0], x[1]),
+            None => String::new(),
+        };
+        Error::model(format!(
+            "{} = \"{}\" is {v}{place} at t = {t}: it must be finite there",
+            self.what,
+            self.expr.text()
+        ))
+    }
+}
+
+/// Forces given by an expression of t (and x, y): f[dof] += coef · e(x_p, t) for each
+/// (point p, dof, coef).
+#[derive(Clone, Debug)]
+pub struct TimedForce {
+    pub source: TimeExpr,
+    pub points: Vec<([f64; 2], Place)>,
+    pub terms: Vec<(usize, usize, f64)>,
+}
+
 /// Displacements imposed on dofs, as functions of time.
 #[derive(Clone, Debug)]
 pub enum Imposed {
@@ -82,6 +131,11 @@ pub enum Imposed {
         angle: f64,
         translation: [f64; 2],
         function: TimeFunction,
+    },
+    /// u_d = e(x, t) for each (dof, initial position of its node): the total value at t.
+    Field {
+        dofs: Vec<(usize, [f64; 2])>,
+        source: TimeExpr,
     },
 }
 
@@ -111,6 +165,11 @@ pub struct Loading {
     pub imposed: Vec<Imposed>,
     /// Time function of each relation's right-hand side (Ramp when missing).
     pub relation_functions: Vec<TimeFunction>,
+    /// Forces given by expressions of t (those without t are in `forces`).
+    pub timed_forces: Vec<TimedForce>,
+    /// Per relation, an expression of t giving its right-hand side at t (instead of
+    /// rhs · f(t)).
+    pub relation_exprs: Vec<Option<TimeExpr>>,
 }
 
 impl Loading {
@@ -131,6 +190,8 @@ impl Loading {
                 function: TimeFunction::Ramp,
             }],
             relation_functions: vec![],
+            timed_forces: vec![],
+            relation_exprs: vec![],
         }
     }
 
@@ -145,6 +206,46 @@ impl Loading {
                 }
             }
         }
+        let mut values = vec![];
+        for f in &self.timed_forces {
+            values.clear();
+            values.extend(f.points.iter().map(|p| f.source.expr.eval(p.0, t)));
+            for &(p, d, c) in &f.terms {
+                out[d] += c * values[p];
+            }
+        }
+    }
+
+    /// Errors if an expression of t is not finite at some point at one of `times` (an
+    /// expression without t was checked where it was evaluated).
+    pub fn check_finite(&self, times: &[f64]) -> Result<()> {
+        for &t in times {
+            for f in &self.timed_forces {
+                for &(x, place) in &f.points {
+                    let v = f.source.expr.eval(x, t);
+                    if !v.is_finite() {
+                        return Err(f.source.error(v, Some((place, x)), t));
+                    }
+                }
+            }
+            for entry in &self.imposed {
+                if let Imposed::Field { dofs, source } = entry {
+                    for &(d, x) in dofs {
+                        let v = source.expr.eval(x, t);
+                        if !v.is_finite() {
+                            return Err(source.error(v, Some((Place::Node(d / 2), x)), t));
+                        }
+                    }
+                }
+            }
+            for r in self.relation_exprs.iter().flatten() {
+                let v = r.expr.eval([0.0; 2], t);
+                if !v.is_finite() {
+                    return Err(r.error(v, None, t));
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The imposed values at time t as `DofMap::expand` takes them: one per dof (imposed
@@ -179,6 +280,11 @@ impl Loading {
                         out[2 * n + 1] = u[1];
                     }
                 }
+                Imposed::Field { dofs, source } => {
+                    for &(d, x) in dofs {
+                        out[d] = source.expr.eval(x, t);
+                    }
+                }
             }
         }
         let base = dofs.num_dofs();
@@ -187,7 +293,10 @@ impl Loading {
                 .relation_functions
                 .get(r)
                 .unwrap_or(&TimeFunction::Ramp);
-            out[base + r] = rhs * f.value(t);
+            out[base + r] = match self.relation_exprs.get(r) {
+                Some(Some(e)) => e.expr.eval([0.0; 2], t),
+                _ => rhs * f.value(t),
+            };
         }
     }
 
@@ -197,8 +306,11 @@ impl Loading {
             .forces
             .iter()
             .map(|f| &f.1)
-            .chain(self.imposed.iter().map(|i| match i {
-                Imposed::Scaled { function, .. } | Imposed::Rigid { function, .. } => function,
+            .chain(self.imposed.iter().filter_map(|i| match i {
+                Imposed::Scaled { function, .. } | Imposed::Rigid { function, .. } => {
+                    Some(function)
+                }
+                Imposed::Field { .. } => None,
             }))
             .chain(&self.relation_functions)
             .flat_map(|f| f.breakpoints())
@@ -291,6 +403,8 @@ mod tests {
                 function: TimeFunction::table(vec![(0.0, 0.0), (2.0, 1.0)], "f").unwrap(),
             }],
             relation_functions: vec![],
+            timed_forces: vec![],
+            relation_exprs: vec![],
         };
         let mut g = vec![];
         loading.imposed_at(2.0, &dofs, &mut g);
