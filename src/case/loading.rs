@@ -151,20 +151,42 @@ pub struct Built {
     pub loading: Loading,
 }
 
-/// How an entry imposes a dof, to compare two entries imposing the same dof.
-#[derive(PartialEq)]
+/// How an entry imposes a dof, to compare two entries imposing the same dof: numbers
+/// with the same function, or else the same values at half the history and at its end
+/// (to round-off: `sin(PI)` is not 0).
 enum Imposes {
-    /// value at f = 1, function
-    Scaled(f64, Option<String>),
-    /// an expression of t
-    Field(String),
+    /// value at f = 1, function, values at the two times
+    Scaled(f64, Option<String>, [f64; 2]),
+    /// an expression of t, values at the two times
+    Field(String, [f64; 2]),
+}
+
+impl Imposes {
+    fn values(&self) -> [f64; 2] {
+        match self {
+            Imposes::Scaled(.., v) | Imposes::Field(_, v) => *v,
+        }
+    }
+
+    /// Whether two entries impose alike; `scale`: the largest value of either entry.
+    fn alike(&self, other: &Imposes, scale: f64) -> bool {
+        match (self, other) {
+            (Imposes::Scaled(a, f, _), Imposes::Scaled(b, g, _)) => {
+                f == g && (a - b).abs() <= 1e-12 * scale
+            }
+            _ => {
+                let (a, b) = (self.values(), other.values());
+                (0..2).all(|k| (a[k] - b[k]).abs() <= 1e-12 * scale)
+            }
+        }
+    }
 }
 
 impl std::fmt::Display for Imposes {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
-            Imposes::Scaled(v, _) => write!(f, "{v}"),
-            Imposes::Field(s) => write!(f, "\"{s}\""),
+            Imposes::Scaled(v, ..) => write!(f, "{v}"),
+            Imposes::Field(s, _) => write!(f, "\"{s}\""),
         }
     }
 }
@@ -177,8 +199,10 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<Built> {
     let mut fixed = vec![];
     let mut imposed = vec![];
     // which entry imposes each dof, and how: a dof imposed twice must be imposed alike
-    let mut by: std::collections::HashMap<usize, (String, Imposes)> =
+    let mut by: std::collections::HashMap<usize, (String, Imposes, f64)> =
         std::collections::HashMap::new();
+    let end = end_time(case)?;
+    let times = [0.5 * end, end];
     for (i, spec) in case.displacement.iter().enumerate() {
         let what = format!("[[displacement]] {} on '{}'", i + 1, spec.group);
         let function = lookup(&funcs, &spec.function, &what)?;
@@ -198,7 +222,8 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<Built> {
                 for &(d, x) in &dofs {
                     let at_1 = source.expr.eval(x, 1.0);
                     fixed.push((d, if at_1.is_finite() { at_1 } else { 0.0 }));
-                    entries.push((d, Imposes::Field(source.expr.text().to_string())));
+                    let at = times.map(|t| source.expr.eval(x, t));
+                    entries.push((d, Imposes::Field(source.expr.text().to_string(), at)));
                 }
                 imposed.push(Imposed::Field { dofs, source });
             } else {
@@ -206,15 +231,21 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<Built> {
                     let x = mesh.coords[n];
                     let u = value_at(&value, &key_what, x, Place::Node(n))?;
                     scaled.push((2 * n + c, u));
-                    entries.push((2 * n + c, Imposes::Scaled(u, spec.function.clone())));
+                    let at = times.map(|t| u * function.value(t));
+                    let how = Imposes::Scaled(u, spec.function.clone(), at);
+                    entries.push((2 * n + c, how));
                 }
             }
         }
+        let scale = entries
+            .iter()
+            .flat_map(|e| e.1.values())
+            .fold(0.0f64, |m, v| m.max(v.abs()));
         for (d, how) in entries {
             if let Some(prev) = by.get(&d) {
-                if prev.1 != how {
+                if !prev.1.alike(&how, scale.max(prev.2)) {
                     let other_function = match (&prev.1, &how) {
-                        (Imposes::Scaled(_, f), Imposes::Scaled(_, g)) if f != g => {
+                        (Imposes::Scaled(_, f, _), Imposes::Scaled(_, g, _)) if f != g => {
                             " with another function"
                         }
                         _ => "",
@@ -228,7 +259,7 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<Built> {
                     )));
                 }
             }
-            by.insert(d, (what.clone(), how));
+            by.insert(d, (what.clone(), how, scale));
         }
         fixed.extend_from_slice(&scaled);
         if !scaled.is_empty() {

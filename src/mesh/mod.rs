@@ -40,6 +40,10 @@ pub use cell::CellKind;
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
 
+/// The group of the 2D cells that a mesh file puts in no group (every reader makes it; a
+/// mesh group of that name beside such cells is an error).
+pub const DEFAULT_GROUP: &str = "ungrouped";
+
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {
     /// Node coordinates (x, y); in axisymmetry x is the radius.
