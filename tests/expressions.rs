@@ -87,7 +87,10 @@ steps = 2
 fn rings_pressed_by_imposed_radial_displacements_give_lames_pressure() {
     let p = interface_pressure();
     assert!(p > 0.0, "the rings must press on each other: p = {p}");
-    for (formulation, kind) in [("mortar", CellKind::Quad8), ("point-to-segment", CellKind::Quad4)] {
+    for (formulation, kind) in [
+        ("mortar", CellKind::Quad8),
+        ("point-to-segment", CellKind::Quad4),
+    ] {
         let mesh = rings(kind);
         let case = rings_case(formulation);
         let out = run(&case, &mesh, false).unwrap_or_else(|e| panic!("{formulation}: {e}"));
@@ -99,7 +102,11 @@ fn rings_pressed_by_imposed_radial_displacements_give_lames_pressure() {
             "{formulation} {kind:?}: Lamé p = {p:.4}, worst slave node {:.4} %",
             100.0 * worst
         );
-        assert!(worst < 5e-3, "{formulation}: contact pressure off by {:.3} %", 100.0 * worst);
+        assert!(
+            worst < 5e-3,
+            "{formulation}: contact pressure off by {:.3} %",
+            100.0 * worst
+        );
         // the imposed values, at every node of both circles (they are on the circles)
         for (group, u) in [("InInner", UA), ("OutOuter", UC)] {
             for n in mesh.node_group(group).unwrap() {
@@ -131,7 +138,11 @@ fn expressions_of_t_give_the_total_value_at_t() {
     for n in mesh.node_group("OutOuter").unwrap() {
         let x = mesh.coords[n];
         let want = 0.5 * UC * x[0] / C;
-        assert!((half.u[2 * n] - want).abs() <= 1e-15, "{} != {want}", half.u[2 * n]);
+        assert!(
+            (half.u[2 * n] - want).abs() <= 1e-15,
+            "{} != {want}",
+            half.u[2 * n]
+        );
         assert!((full.u[2 * n] - 2.0 * want).abs() <= 1e-15);
     }
     // linear problem: the half-way state is half the final one
@@ -162,16 +173,16 @@ fn bad_expressions_name_the_entry_and_the_place() {
     let e = error_of(&edit("*x/sqrt(x^2+y^2)", "*z/sqrt(x^2+y^2)"), &mesh);
     assert_eq!(
         e,
-        "[[displacement]] 5 on 'InInner': dx = \"1e-2*z/sqrt(x^2+y^2)\": unknown name 'z' at \
-         character 6: the variables are x, y, t (functions: abs, signum, sin, cos, tan, asin, \
+        "[[displacement]] 5 on 'InInner': dx = \"1e-2*z/sqrt(x^2+y^2)\", character 6: unknown \
+         name 'z'; the variables are x, y, t (functions: abs, signum, sin, cos, tan, asin, \
          acos, atan, sinh, cosh, tanh, asinh, acosh, atanh, floor, round, ceil, trunc, fract, \
          exp, sqrt, cbrt, ln, log2, log10, log, atan2, min, max; constants: PI, E)"
     );
     let e = error_of(&edit("*x/sqrt(x^2+y^2)", "*x/sqrt(x^2+y^2"), &mesh);
     assert_eq!(
         e,
-        "[[displacement]] 5 on 'InInner': dx = \"1e-2*x/sqrt(x^2+y^2\": '(' is not closed at \
-         character 12"
+        "[[displacement]] 5 on 'InInner': dx = \"1e-2*x/sqrt(x^2+y^2\", character 12: '(' is \
+         not closed"
     );
     // 1/y on the quarter's side y = 0: infinite at the node (10, 0)
     let e = error_of(&edit("*x/sqrt(x^2+y^2)", "/y"), &mesh);
@@ -179,14 +190,20 @@ fn bad_expressions_name_the_entry_and_the_place() {
         e.starts_with("[[displacement]] 5 on 'InInner': dx = \"1e-2/y\" is inf at node "),
         "{e}"
     );
-    assert!(e.ends_with("(x = 10, y = 0): it must be finite there"), "{e}");
+    assert!(
+        e.ends_with("(x = 10, y = 0): it must be finite there"),
+        "{e}"
+    );
     // the same with t: found at the first step end (t = 0.5)
     let e = error_of(&edit("t*(-1e-2)*x/25.0", "t*(-1e-2)/y"), &mesh);
     assert!(
         e.starts_with("[[displacement]] 6 on 'OutOuter': dx = \"t*(-1e-2)/y\" is -inf at node"),
         "{e}"
     );
-    assert!(e.ends_with("(x = 25, y = 0) at t = 0.5: it must be finite there"), "{e}");
+    assert!(
+        e.ends_with("(x = 25, y = 0) at t = 0.5: it must be finite there"),
+        "{e}"
+    );
     // an expression of t is the value at t: a function cannot scale it too
     let mut c = edit("t*(-1e-2)*x/25.0", "t*(-1e-2)*x/25.0");
     c.displacement[5].function = Some("f".into());
@@ -195,10 +212,16 @@ fn bad_expressions_name_the_entry_and_the_place() {
         table: vec![[0.0, 0.0], [1.0, 1.0]],
     });
     let e = error_of(&c, &mesh);
-    assert!(e.contains("is an expression of t, which gives the value at time t itself"), "{e}");
+    assert!(
+        e.contains("is an expression of t, which gives the value at time t itself"),
+        "{e}"
+    );
     // a plain non-finite number is still refused before any work
     let mut c = rings_case("mortar");
     c.displacement[0].dy = Some(f64::NAN.into());
     let e = build_problem(&c, &mesh).err().unwrap().to_string();
-    assert_eq!(e, "[[displacement]] 1 on 'InStart': dy must be a finite number, got NaN");
+    assert_eq!(
+        e,
+        "[[displacement]] 1 on 'InStart': dy must be a finite number, got NaN"
+    );
 }

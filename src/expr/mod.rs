@@ -62,6 +62,9 @@ impl Expr {
     /// the position (1-based character) of the fault.
     pub fn parse(text: &str, allowed: &[&str], what: &str) -> Result<Expr> {
         let fail = |msg: String| Error::model(format!("{what} = \"{text}\": {msg}"));
+        let fail_at = |pos: usize, msg: String| {
+            Error::model(format!("{what} = \"{text}\", character {pos}: {msg}"))
+        };
         let list = allowed.join(", ");
         // names first: an unknown name is the likeliest fault and exmex would take it for
         // a variable (or reject the call of an unknown function with a vaguer message)
@@ -73,16 +76,19 @@ impl Expr {
                 } else {
                     String::new()
                 };
-                return Err(fail(format!(
-                    "unknown name '{name}' at character {pos}: the variables{hint} are {list} \
-                     (functions: {}; constants: PI, E)",
-                    scan::FUNCTIONS.join(", ")
-                )));
+                return Err(fail_at(
+                    pos,
+                    format!(
+                        "unknown name '{name}'; the variables{hint} are {list} (functions: {}; \
+                         constants: PI, E)",
+                        scan::FUNCTIONS.join(", ")
+                    ),
+                ));
             }
         }
         scan::check(text).map_err(|(pos, msg)| match pos {
             0 => fail(msg),
-            _ => fail(format!("{msg} at character {pos}")),
+            _ => fail_at(pos, msg),
         })?;
         let flat = <Flat as Express<f64>>::parse(text)
             .map_err(|e| fail(format!("cannot be read: {}", e.msg())))?;
@@ -173,56 +179,56 @@ mod tests {
                 .unwrap_err()
                 .to_string()
         };
-        let m = msg("1e-3*z", &XYT);
-        assert!(
-            m.starts_with("[[force]] 1 on 'A': fx = \"1e-3*z\": unknown name 'z' at character 6"),
-            "{m}"
-        );
-        let m = msg("2*x", &["t"]);
-        assert!(
-            m.contains("unknown name 'x' at character 3: the variables here are t"),
-            "{m}"
-        );
-        let m = msg("sqr(x)", &XYT);
-        assert!(m.contains("unknown name 'sqr' at character 1"), "{m}");
-        let m = msg("(x+1", &XYT);
-        assert!(m.contains("'(' is not closed at character 1"), "{m}");
-        let m = msg("x+1)", &XYT);
-        assert!(m.contains("')' closes nothing at character 4"), "{m}");
-        let m = msg("x*", &XYT);
-        assert!(
-            m.contains("the expression ends with an operator at character 2"),
-            "{m}"
-        );
-        let m = msg("x**2", &XYT);
-        assert!(m.contains("'*' follows an operator at character 3"), "{m}");
-        let m = msg("*x", &XYT);
-        assert!(m.contains("'*' has no left operand at character 1"), "{m}");
-        let m = msg("1 + -x^2", &XYT);
-        assert!(
-            m.contains("a minus sign before a power is ambiguous: write -(x^2)"),
-            "{m}"
-        );
-        assert!(m.contains("at character 5"), "{m}");
-        let m = msg("-sin(x)^2", &XYT);
-        assert!(
-            m.contains("ambiguous") && m.contains("at character 1"),
-            "{m}"
-        );
-        let m = msg("2^3^2", &XYT);
-        assert!(
-            m.contains("a power of a power is ambiguous") && m.contains("character 4"),
-            "{m}"
-        );
-        let m = msg("2 x", &XYT);
-        assert!(
-            m.contains("'x' follows a value without an operator at character 3"),
-            "{m}"
-        );
-        let m = msg("x $ 2", &XYT);
-        assert!(m.contains("'$' is not allowed at character 3"), "{m}");
-        let m = msg("", &XYT);
-        assert!(m.contains("the expression is empty"), "{m}");
+        let head = "[[force]] 1 on 'A': fx = \"1e-3*z\", character 6: unknown name 'z'; the";
+        assert!(msg("1e-3*z", &XYT).starts_with(head));
+        for (text, allowed, want) in [
+            (
+                "2*x",
+                &["t"][..],
+                "character 3: unknown name 'x'; the variables here are t",
+            ),
+            ("sqr(x)", &XYT, "character 1: unknown name 'sqr'"),
+            ("(x+1", &XYT, "character 1: '(' is not closed"),
+            ("x+1)", &XYT, "character 4: ')' closes nothing"),
+            (
+                "x*",
+                &XYT,
+                "character 2: the expression ends with an operator",
+            ),
+            ("x**2", &XYT, "character 3: '*' follows an operator"),
+            ("*x", &XYT, "character 1: '*' has no left operand"),
+            (
+                "1 + -x^2",
+                &XYT,
+                "character 5: a minus sign before a power is ambiguous",
+            ),
+            (
+                "-sin(x)^2",
+                &XYT,
+                "character 1: a minus sign before a power",
+            ),
+            (
+                "2^3^2",
+                &XYT,
+                "character 4: a power of a power is ambiguous",
+            ),
+            (
+                "2 x",
+                &XYT,
+                "character 3: 'x' follows a value without an operator",
+            ),
+            ("x $ 2", &XYT, "character 3: '$' is not allowed"),
+            (
+                "sin x",
+                &XYT,
+                "character 1: function 'sin' needs its argument in parentheses",
+            ),
+            ("min(x)", &XYT, "character 6: 'min' takes two arguments"),
+            ("", &XYT, "fx = \"\": the expression is empty"),
+        ] {
+            let m = msg(text, allowed);
+            assert!(m.contains(want), "{text}: {m}");
+        }
     }
 
     #[test]

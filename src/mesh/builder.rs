@@ -166,11 +166,7 @@ impl MeshBuilder {
                 grouped[c] = true;
             }
         }
-        let free: Vec<usize> = self
-            .mesh
-            .cells_of_dim(2)
-            .filter(|&c| !grouped[c])
-            .collect();
+        let free: Vec<usize> = self.mesh.cells_of_dim(2).filter(|&c| !grouped[c]).collect();
         if free.is_empty() {
             return Ok(());
         }
@@ -186,7 +182,9 @@ impl MeshBuilder {
                 self.labels[free[0]]
             )));
         }
-        self.mesh.cell_groups.insert(DEFAULT_GROUP.to_string(), free);
+        self.mesh
+            .cell_groups
+            .insert(DEFAULT_GROUP.to_string(), free);
         Ok(())
     }
 
