@@ -112,8 +112,8 @@ fn rings_pressed_by_imposed_radial_displacements_give_lames_pressure() {
             for n in mesh.node_group(group).unwrap() {
                 let x = mesh.coords[n];
                 let r = x[0].hypot(x[1]);
-                for c in 0..2 {
-                    let want = u * x[c] / r;
+                for (c, xc) in x.iter().enumerate() {
+                    let want = u * xc / r;
                     assert!(
                         (out.u[2 * n + c] - want).abs() <= 1e-15,
                         "{group} node {n}: {} != {want}",

@@ -102,6 +102,9 @@ fn time_expr(c: Compiled, what: &str) -> TimeExpr {
     }
 }
 
+/// A point where a load is evaluated: (position, place, [(dof, coefficient)]).
+type LoadPoint = ([f64; 2], Place, Vec<(usize, f64)>);
+
 /// Forces `dir(point)` · value on edge points (or nodes): into the force vector of the
 /// time function, or, for an expression of t, as a timed force.
 struct Forces<'a> {
@@ -111,13 +114,12 @@ struct Forces<'a> {
 }
 
 impl Forces<'_> {
-    /// `points`: (position, place, [(dof, coefficient)]).
     fn add(
         &mut self,
         c: Compiled,
         what: &str,
         function: TimeFunction,
-        points: Vec<([f64; 2], Place, Vec<(usize, f64)>)>,
+        points: Vec<LoadPoint>,
     ) -> Result<()> {
         if c.uses_t() {
             let mut terms = vec![];

@@ -1,5 +1,6 @@
 //! Load histories: time functions (piecewise-linear tables) that scale each load and each
-//! imposed displacement, rigid motions (rotation and translation of a node set), and the
+//! imposed displacement, rigid motions (rotation and translation of a node set), values
+//! given by expressions of (x, y, t) (total values at t, evaluated at each time), and the
 //! evaluation of the external forces and imposed values at a time t.
 //!
 //! Without a history every load follows the ramp f(t) = t, so that t plays the part of the
