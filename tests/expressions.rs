@@ -40,10 +40,16 @@ fn interface_pressure() -> f64 {
     -g0 / (g1 - g0)
 }
 
-fn rings(kind: CellKind) -> tribo::mesh::Mesh {
-    let inner = ring(A, B, 4, 24, 90.0, kind).unwrap();
-    let outer = ring(B, C, 6, 24, 90.0, kind).unwrap();
+/// Quarter rings (angle 90) or whole ones (360: closed contact curves).
+fn rings_of(kind: CellKind, angle: f64) -> tribo::mesh::Mesh {
+    let n_theta = (24.0 * angle / 90.0) as usize;
+    let inner = ring(A, B, 4, n_theta, angle, kind).unwrap();
+    let outer = ring(B, C, 6, n_theta, angle, kind).unwrap();
     bodies(&[("In", &inner), ("Out", &outer)])
+}
+
+fn rings(kind: CellKind) -> tribo::mesh::Mesh {
+    rings_of(kind, 90.0)
 }
 
 /// The rings' case: symmetry on the quarter's straight sides, the radial displacements by
@@ -122,6 +128,37 @@ fn rings_pressed_by_imposed_radial_displacements_give_lames_pressure() {
                 }
             }
         }
+    }
+}
+
+#[test]
+fn whole_rings_with_closed_contact_curves_give_lames_pressure() {
+    // no symmetry conditions: the imposed circles hold the rings
+    let p = interface_pressure();
+    for (formulation, kind) in [
+        ("mortar", CellKind::Quad8),
+        ("point-to-segment", CellKind::Quad4),
+    ] {
+        let mesh = rings_of(kind, 360.0);
+        let mut case = rings_case(formulation);
+        case.displacement.drain(..4);
+        assert_eq!(case.displacement[0].group, "InInner");
+        let out = run(&case, &mesh, false).unwrap_or_else(|e| panic!("{formulation}: {e}"));
+        let slave = &out.contact_pressure[0];
+        assert_eq!(slave.len(), mesh.node_group("InOuter").unwrap().len());
+        let worst = slave
+            .iter()
+            .map(|&(_, pc)| (pc / p - 1.0).abs())
+            .fold(0.0f64, f64::max);
+        println!(
+            "whole rings, {formulation} {kind:?}: Lamé p = {p:.4}, worst slave node {:.4} %",
+            100.0 * worst
+        );
+        assert!(
+            worst < 5e-3,
+            "{formulation}: contact pressure off by {:.3} %",
+            100.0 * worst
+        );
     }
 }
 
