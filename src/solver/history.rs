@@ -413,7 +413,7 @@ mod tests {
             what: "test".into(),
         };
         let x = |i: usize| {
-            let a = i as f64 * 6.283185307179586 / n as f64;
+            let a = i as f64 * std::f64::consts::TAU / n as f64;
             [a.cos(), a.sin()]
         };
         let used = vec![true; 2 * n];
