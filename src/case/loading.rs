@@ -264,12 +264,11 @@ pub fn build(case: &CaseFile, mesh: &Mesh) -> Result<Built> {
             by.insert(d, (what.clone(), how, scale));
         }
         fixed.extend_from_slice(&scaled);
-        if !scaled.is_empty() {
-            imposed.push(Imposed::Scaled {
-                dofs: scaled,
-                function,
-            });
-        }
+        // (even empty: its function's kinks still end steps, as before expressions)
+        imposed.push(Imposed::Scaled {
+            dofs: scaled,
+            function,
+        });
     }
     let mut by_displacement = vec![false; ndof];
     for &(d, _) in &fixed {
