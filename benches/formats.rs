@@ -78,7 +78,7 @@ fn time_formats() {
     let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
     let c = ssnp154::contact_case("B", spec, None);
     let out = case::run(&c, &mesh, false).unwrap();
-    let materials: Vec<String> = c.material.iter().map(|m| m.group.clone()).collect();
+    let materials: Vec<Option<String>> = c.material.iter().map(|m| m.group.clone()).collect();
     let setting = Setting {
         mesh: &mesh,
         material_groups: &materials,

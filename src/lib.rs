@@ -12,6 +12,7 @@
 //! | `case` | TOML case files, built-in SSNP154 cases |
 //! | `cli` | the `tribo` command |
 //! | `fem` | shape functions, quadrature, materials, element kernels |
+//! | `expr` | values given as expressions of x, y and t (compiled once, errors placed) |
 
 // Index loops mirror the formulas (sums over nodes, components, Gauss points).
 #![allow(clippy::needless_range_loop)]
@@ -21,6 +22,7 @@ pub mod case;
 pub mod cli;
 pub mod contact;
 pub mod error;
+pub mod expr;
 pub mod fem;
 pub mod memory;
 pub mod mesh;

@@ -242,7 +242,7 @@ fn bad_load_histories_name_the_entry() {
     );
     assert_eq!(
         e,
-        "[[force]] on 'TopRight': function 'rampe' is not defined (functions: ramp)"
+        "[[force]] 1 on 'TopRight': function 'rampe' is not defined (functions: ramp)"
     );
     let e = error_of(
         "fn_twice.toml",

@@ -70,7 +70,7 @@ fn conflicts_name_both_entries() {
     expect(
         "dof_twice.toml",
         "[[displacement]]\ngroup = \"BottomLeft\"\ndx = 1.0\n",
-        "is also imposed by [[displacement]] on 'Left'",
+        "is also imposed by [[displacement]] 1 on 'Left'",
     );
     expect(
         "rotation_and_displacement.toml",
@@ -260,7 +260,7 @@ fn entries_that_say_nothing_or_contradict_another_are_refused() {
     ) + "[model]\nmodelisation = \"axisymmetric\"\n";
     let e = error_of("axis_force.toml", &axisym);
     assert!(
-        e.contains("[[force]] on 'TopLeft': node 3 is on the axis (r = 0)"),
+        e.contains("[[force]] 1 on 'TopLeft': node 3 is on the axis (r = 0)"),
         "{e}"
     );
 }

@@ -145,7 +145,7 @@ fn zero_load_converges_to_the_unloaded_state() {
         let mesh = build_mesh(&spec, std::path::Path::new("")).unwrap();
         let mut c = ssnp154::contact_case(id, spec, formulation);
         for f in c.force.iter_mut() {
-            f.fy = Some(0.0);
+            f.fy = Some(0.0.into());
         }
         let out = run(&c, &mesh, false).unwrap_or_else(|e| panic!("{id} {formulation:?}: {e}"));
         let umax = out.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));

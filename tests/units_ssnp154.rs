@@ -30,7 +30,7 @@ fn answer(id: &str, formulation: Option<&str>, l: f64, s: f64) -> (f64, f64) {
     }
     // forces in N on the thickness: 17 500 N either way (a stress × an area: s l²)
     for f in &mut c.force {
-        f.fy = f.fy.map(|v| v * s * l * l);
+        f.fy = f.fy.take().map(|v| v * s * l * l);
     }
     let out = case::run(&c, &mesh, false).unwrap_or_else(|e| panic!("{id} ({l}, {s}): {e}"));
     let p = |n: &str| out.probes.iter().find(|q| q.0 == n).unwrap().1;

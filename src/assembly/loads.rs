@@ -1,5 +1,6 @@
-//! External loads at load factor 1, as a full dof vector: nodal forces on node groups,
-//! pressures and tractions on edge groups (dead loads on the reference geometry).
+//! External loads: the integration points of edge loads (pressures and tractions on edge
+//! groups, dead loads on the reference geometry). The case's loading multiplies each
+//! point's weights by the load's value there (a number or an expression of x, y, t).
 
 use crate::error::{Error, Result};
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
@@ -8,33 +9,47 @@ use crate::fem::quadrature::line;
 use crate::mesh::topology::{edge_parent, edge_parents};
 use crate::mesh::Mesh;
 
+/// One integration point of an edge cell.
 #[derive(Clone, Copy, Debug)]
-pub enum EdgeLoad {
-    /// Normal pressure, positive pushing into the body.
-    Pressure(f64),
-    /// Traction vector per unit area.
-    Traction([f64; 2]),
+pub struct EdgePoint {
+    /// Position (reference geometry).
+    pub x: [f64; 2],
+    /// The edge cell.
+    pub cell: usize,
+    pub nodes: [usize; MAX_NODES],
+    pub shape: [f64; MAX_NODES],
+    pub num_nodes: usize,
+    /// Outward normal times the weight (ds · thickness or ds · 2πr): a pressure p gives
+    /// the force −p · normal_w.
+    pub normal_w: [f64; 2],
+    /// The weight: a traction t gives the force t · ds_w.
+    pub ds_w: f64,
 }
 
-/// Adds `force` at each node of `nodes`.
-pub fn add_nodal_force(f: &mut [f64], nodes: &[usize], force: [f64; 2]) {
-    for &n in nodes {
-        f[2 * n] += force[0];
-        f[2 * n + 1] += force[1];
+impl EdgePoint {
+    /// (dof, coefficient) pairs of the force `dir` · value spread on the cell's nodes.
+    pub fn terms(&self, dir: [f64; 2]) -> impl Iterator<Item = (usize, f64)> + '_ {
+        (0..self.num_nodes).flat_map(move |a| {
+            let n = self.nodes[a];
+            [
+                (2 * n, self.shape[a] * dir[0]),
+                (2 * n + 1, self.shape[a] * dir[1]),
+            ]
+        })
     }
 }
 
-/// Integrates an edge load over the 1D cells of `group` and adds it to `f`.
-pub fn add_edge_load(
+/// The integration points of the 1D cells of `group`, which must be sides of 2D cells
+/// (the normal points out of them).
+pub fn edge_points(
     mesh: &Mesh,
     group: &str,
-    load: EdgeLoad,
     model: Modelisation,
     thickness: f64,
-    f: &mut [f64],
-) -> Result<()> {
+) -> Result<Vec<EdgePoint>> {
     let cells = mesh.cell_group(group)?;
     let parents = edge_parents(mesh);
+    let mut out = vec![];
     for &c in cells {
         let kind = mesh.kind(c);
         if kind.dim() != 1 {
@@ -52,37 +67,38 @@ pub fn add_edge_load(
         let nn = nodes.len();
         let rule = line(nn);
         for (q, &xi) in rule.points.iter().enumerate() {
-            let mut n = [0.0; MAX_NODES];
+            let mut p = EdgePoint {
+                x: [0.0; 2],
+                cell: c,
+                nodes: [0; MAX_NODES],
+                shape: [0.0; MAX_NODES],
+                num_nodes: nn,
+                normal_w: [0.0; 2],
+                ds_w: 0.0,
+            };
+            p.nodes[..nn].copy_from_slice(nodes);
             let mut dn = [[0.0; 2]; MAX_NODES];
-            shape(kind, xi, &mut n);
+            shape(kind, xi, &mut p.shape);
             shape_grad(kind, xi, &mut dn);
             let mut t = [0.0; 2];
-            let mut r = 0.0;
             for a in 0..nn {
                 let x = mesh.coords[nodes[a]];
                 t[0] += dn[a][0] * x[0];
                 t[1] += dn[a][0] * x[1];
-                r += n[a] * x[0];
+                p.x[0] += p.shape[a] * x[0];
+                p.x[1] += p.shape[a] * x[1];
             }
             // Right-hand normal of the tangent (|t| = ds/dξ), outward if same_dir.
             let sign = if same_dir { 1.0 } else { -1.0 };
-            let normal = [sign * t[1], -sign * t[0]];
             let measure = match model {
-                Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * r,
+                Modelisation::Axisymmetric => 2.0 * std::f64::consts::PI * p.x[0],
                 _ => thickness,
             };
-            let jac = (t[0] * t[0] + t[1] * t[1]).sqrt();
             let w = rule.weights[q] * measure;
-            let traction_ds = match load {
-                // -p n ds: normal has length ds/dξ already
-                EdgeLoad::Pressure(p) => [-p * normal[0] * w, -p * normal[1] * w],
-                EdgeLoad::Traction(tr) => [tr[0] * jac * w, tr[1] * jac * w],
-            };
-            for a in 0..nn {
-                f[2 * nodes[a]] += n[a] * traction_ds[0];
-                f[2 * nodes[a] + 1] += n[a] * traction_ds[1];
-            }
+            p.normal_w = [sign * t[1] * w, -sign * t[0] * w];
+            p.ds_w = (t[0] * t[0] + t[1] * t[1]).sqrt() * w;
+            out.push(p);
         }
     }
-    Ok(())
+    Ok(out)
 }

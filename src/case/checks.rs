@@ -6,6 +6,7 @@
 
 use super::schema::{CaseFile, MeshSpec};
 use crate::error::{Error, Result};
+use crate::expr::Value;
 use crate::fem::material::Modelisation;
 
 /// Most load steps a history may have (a million steps of a small model is hours of work;
@@ -71,8 +72,13 @@ fn safe_name(name: &str, what: &str) -> Result<()> {
     }
 }
 
-/// The two components of a load: at least one given, each finite.
-fn components(what: &str, given: [(&str, Option<f64>); 2]) -> Result<()> {
+/// A number (finite) or an expression of x, y and t that compiles.
+fn value(v: &Value, what: &str, key: &str) -> Result<()> {
+    v.compile(&["x", "y", "t"], &key_of(what, key)).map(|_| ())
+}
+
+/// The two components of a load: at least one given, each finite or an expression.
+fn components(what: &str, given: [(&str, &Option<Value>); 2]) -> Result<()> {
     if given.iter().all(|(_, v)| v.is_none()) {
         return Err(Error::model(format!(
             "{what} imposes nothing: give {}, {} or both",
@@ -81,7 +87,7 @@ fn components(what: &str, given: [(&str, Option<f64>); 2]) -> Result<()> {
     }
     for (k, v) in given {
         if let Some(v) = v {
-            finite(v, what, k)?;
+            value(v, what, k)?;
         }
     }
     Ok(())
@@ -135,12 +141,25 @@ pub fn check(case: &CaseFile) -> Result<()> {
         )));
     }
     for (i, a) in case.material.iter().enumerate() {
-        if let Some(j) = case.material[..i].iter().position(|b| b.group == a.group) {
+        let Some(group) = &a.group else {
+            if case.material.len() > 1 {
+                return Err(Error::model(format!(
+                    "[[material]] {} has no group: a material without a group covers the whole \
+                     mesh, so it must be the only one; give each of the {} materials its group",
+                    i + 1,
+                    case.material.len()
+                )));
+            }
+            continue;
+        };
+        if let Some(j) = case.material[..i]
+            .iter()
+            .position(|b| b.group.as_ref() == Some(group))
+        {
             return Err(Error::model(format!(
-                "[[material]] {} and {} are both for group '{}': give one material per group",
+                "[[material]] {} and {} are both for group '{group}': give one material per group",
                 j + 1,
                 i + 1,
-                a.group
             )));
         }
     }
@@ -161,30 +180,30 @@ pub fn check(case: &CaseFile) -> Result<()> {
                 "{what} imposes nothing: give dx, dy or both"
             )));
         }
-        for (k, v) in [("dx", d.dx), ("dy", d.dy)] {
+        for (k, v) in [("dx", &d.dx), ("dy", &d.dy)] {
             if let Some(v) = v {
-                finite(v, &what, k)?;
+                value(v, &what, k)?;
             }
         }
     }
     for (i, f) in case.force.iter().enumerate() {
         let what = format!("[[force]] {} on '{}'", i + 1, f.group);
-        components(&what, [("fx", f.fx), ("fy", f.fy)])?;
+        components(&what, [("fx", &f.fx), ("fy", &f.fy)])?;
     }
     for (i, p) in case.pressure.iter().enumerate() {
-        finite(
-            p.p,
+        value(
+            &p.p,
             &format!("[[pressure]] {} on '{}'", i + 1, p.group),
             "p",
         )?;
     }
     for (i, t) in case.traction.iter().enumerate() {
         let what = format!("[[traction]] {} on '{}'", i + 1, t.group);
-        components(&what, [("tx", t.tx), ("ty", t.ty)])?;
+        components(&what, [("tx", &t.tx), ("ty", &t.ty)])?;
     }
     for (i, r) in case.relation.iter().enumerate() {
         let what = format!("[[relation]] {} ('{}')", i + 1, r.name);
-        finite(r.rhs, &what, "rhs")?;
+        r.rhs.compile(&["t"], &key_of(&what, "rhs"))?;
         if r.terms.is_empty() {
             return Err(Error::model(format!("{what} has no terms")));
         }

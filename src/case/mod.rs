@@ -175,23 +175,25 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
     let mut material_of: Vec<Option<usize>> = vec![None; mesh.num_cells()];
     let mut materials = vec![];
     for (i, spec) in case.material.iter().enumerate() {
-        let what = format!("[[material]] for group '{}'", spec.group);
-        let cells = mesh
-            .cell_group(&spec.group)
+        let what = format!("[[material]] for {}", spec.label());
+        let cells = spec
+            .cells(mesh)
             .map_err(|e| Error::model(format!("[[material]]: {e}")))?;
-        if mesh.group_dim(&spec.group) != Some(2) {
-            return Err(Error::model(format!(
-                "{what}: the group is not made of 2D cells"
-            )));
+        if let Some(g) = &spec.group {
+            if mesh.group_dim(g) != Some(2) {
+                return Err(Error::model(format!(
+                    "{what}: the group is not made of 2D cells"
+                )));
+            }
         }
         materials.push(Elastic::new(spec.young, spec.nu, &what)?);
-        for &c in cells {
+        for c in cells {
             if let Some(j) = material_of[c] {
                 return Err(Error::model(format!(
-                    "{what}: cell {} is also in group '{}' of [[material]] {}: a cell has one \
+                    "{what}: cell {} is also in {} of [[material]] {}: a cell has one \
                      material",
                     c + 1,
-                    case.material[j].group,
+                    case.material[j].label(),
                     j + 1
                 )));
             }
@@ -234,7 +236,11 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
             used[2 * n + 1] = true;
         }
     }
-    let (fixed, loading) = loading::build(case, mesh)?;
+    let loading::Built {
+        fixed,
+        rhs,
+        loading,
+    } = loading::build(case, mesh)?;
     let mut relations = vec![];
     for (i, spec) in case.relation.iter().enumerate() {
         let name = if spec.name.is_empty() {
@@ -259,7 +265,7 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
         }
         // (with a right-hand side it is a contradiction, which the dof map reports)
         let cancel = sums.values().all(|&(sum, size)| sum.abs() <= 1e-12 * size);
-        if cancel && spec.rhs == 0.0 {
+        if cancel && rhs[i] == 0.0 && loading.relation_exprs[i].is_none() {
             return Err(Error::model(format!(
                 "[[relation]] '{name}': its terms cancel (the coefficients of each dof add up \
                  to zero), the relation says nothing"
@@ -267,7 +273,7 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
         }
         relations.push(Relation {
             terms,
-            rhs: spec.rhs,
+            rhs: rhs[i],
             name,
         });
     }

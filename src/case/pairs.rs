@@ -109,8 +109,8 @@ fn on_symmetry_lines(case: &CaseFile, mesh: &Mesh, m: &Mortar) -> Vec<usize> {
         let Ok(nodes) = mesh.node_group(&d.group) else {
             continue;
         };
-        for (c, v) in [d.dx, d.dy].into_iter().enumerate() {
-            if v == Some(0.0) {
+        for (c, v) in [&d.dx, &d.dy].into_iter().enumerate() {
+            if v.as_ref().and_then(|v| v.number()) == Some(0.0) {
                 for &n in &nodes {
                     held[n][c] = true;
                 }
@@ -157,8 +157,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             Modelisation::PlaneStress => 1.0 / spec.young,
             _ => (1.0 - spec.nu * spec.nu) / spec.young,
         };
-        if let Ok(cells) = mesh.cell_group(&spec.group) {
-            for &cell in cells {
+        if let Ok(cells) = spec.cells(mesh) {
+            for cell in cells {
                 compliance[cell] = c;
             }
         }

@@ -1,6 +1,7 @@
 //! The TOML case file, mirrored by serde structs. Unknown keys are errors that list the
 //! valid ones (serde's `deny_unknown_fields`).
 
+use crate::expr::Value;
 use crate::fem::material::Modelisation;
 use crate::fem::solid::Kinematics;
 use serde::{Deserialize, Deserializer, Serialize};
@@ -131,14 +132,38 @@ fn default_kinematics() -> Kinematics {
 fn one() -> f64 {
     1.0
 }
+fn zero() -> Value {
+    Value::Number(0.0)
+}
 
 #[derive(Clone, Debug, Deserialize, Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
-    pub group: String,
+    /// A group of 2D cells; omitted: every 2D cell of the mesh (one material only).
+    #[serde(default)]
+    pub group: Option<String>,
     #[serde(rename = "E")]
     pub young: f64,
     pub nu: f64,
+}
+
+impl MaterialSpec {
+    /// The cells of the material: those of its group (an error if the mesh has no such
+    /// group), or every 2D cell when the group is omitted.
+    pub fn cells(&self, mesh: &crate::mesh::Mesh) -> crate::error::Result<Vec<usize>> {
+        match &self.group {
+            Some(g) => Ok(mesh.cell_group(g)?.to_vec()),
+            None => Ok(mesh.cells_of_dim(2).collect()),
+        }
+    }
+
+    /// "group 'Ring'", or "the whole mesh", for messages.
+    pub fn label(&self) -> String {
+        match &self.group {
+            Some(g) => format!("group '{g}'"),
+            None => "the whole mesh (no group given)".into(),
+        }
+    }
 }
 
 /// A piecewise-linear function of time: `table = [[t0, v0], [t1, v1], ...]`, times
@@ -155,9 +180,11 @@ pub struct FunctionSpec {
 #[serde(deny_unknown_fields)]
 pub struct DisplacementSpec {
     pub group: String,
-    pub dx: Option<f64>,
-    pub dy: Option<f64>,
-    /// Time function scaling the values (default: f(t) = t).
+    /// A number or an expression of x, y (the node's initial position) and t.
+    pub dx: Option<Value>,
+    pub dy: Option<Value>,
+    /// Time function scaling the values (default: f(t) = t); not with an expression of t,
+    /// which gives the value at time t itself.
     pub function: Option<String>,
 }
 
@@ -184,9 +211,9 @@ pub struct ForceSpec {
     pub group: String,
     /// Force applied at each node of the group (at least one component).
     #[serde(default)]
-    pub fx: Option<f64>,
+    pub fx: Option<Value>,
     #[serde(default)]
-    pub fy: Option<f64>,
+    pub fy: Option<Value>,
     pub function: Option<String>,
 }
 
@@ -194,7 +221,8 @@ pub struct ForceSpec {
 #[serde(deny_unknown_fields)]
 pub struct PressureSpec {
     pub group: String,
-    pub p: f64,
+    /// A number or an expression of x, y (the integration point's initial position) and t.
+    pub p: Value,
     pub function: Option<String>,
 }
 
@@ -203,9 +231,9 @@ pub struct PressureSpec {
 pub struct TractionSpec {
     pub group: String,
     #[serde(default)]
-    pub tx: Option<f64>,
+    pub tx: Option<Value>,
     #[serde(default)]
-    pub ty: Option<f64>,
+    pub ty: Option<Value>,
     pub function: Option<String>,
 }
 
@@ -215,9 +243,11 @@ pub struct RelationSpec {
     #[serde(default)]
     pub name: String,
     pub terms: Vec<TermSpec>,
-    #[serde(default)]
-    pub rhs: f64,
-    /// Time function scaling the right-hand side (default: f(t) = t).
+    /// A number or an expression of t.
+    #[serde(default = "zero")]
+    pub rhs: Value,
+    /// Time function scaling the right-hand side (default: f(t) = t); not with an
+    /// expression of t.
     pub function: Option<String>,
 }
 

@@ -33,12 +33,12 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         },
         material: vec![
             MaterialSpec {
-                group: "Block".into(),
+                group: Some("Block".into()),
                 young: 70000.0,
                 nu: 0.3,
             },
             MaterialSpec {
-                group: "Cylinder".into(),
+                group: Some("Cylinder".into()),
                 young: 210000.0,
                 nu: 0.3,
             },
@@ -48,13 +48,13 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         displacement: vec![
             DisplacementSpec {
                 group: "Encast".into(),
-                dx: Some(0.0),
-                dy: Some(0.0),
+                dx: Some(0.0.into()),
+                dy: Some(0.0.into()),
                 function: None,
             },
             DisplacementSpec {
                 group: "Axe".into(),
-                dx: Some(0.0),
+                dx: Some(0.0.into()),
                 dy: None,
                 function: None,
             },
@@ -62,7 +62,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         force: vec![ForceSpec {
             group: "Force".into(),
             fx: None,
-            fy: Some(-17500.0),
+            fy: Some((-17500.0).into()),
             function: None,
         }],
         pressure: vec![],
@@ -82,7 +82,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
                     coef: -1.0,
                 },
             ],
-            rhs: 0.0,
+            rhs: 0.0.into(),
             function: None,
         }],
         solver: SolverSpec {

@@ -1,8 +1,9 @@
 //! `MeshBuilder`: the one way to make a `Mesh`. Readers and generators push nodes, cells
 //! and groups; `finish` checks node indices, reorders clockwise cells and rejects
-//! degenerate or tangled ones, naming the cell.
+//! degenerate or tangled ones, naming the cell, and puts 2D cells in no group into the
+//! default group `ungrouped` (so every reader does).
 
-use super::{CellKind, Mesh};
+use super::{CellKind, Mesh, DEFAULT_GROUP};
 use crate::error::{Error, Result};
 use crate::fem::element::{jacobian_det, reference_nodes};
 
@@ -180,6 +181,7 @@ impl MeshBuilder {
             nodes.sort_unstable();
             nodes.dedup();
         }
+        self.default_group()?;
         Ok(self.mesh)
     }
 
@@ -188,6 +190,37 @@ impl MeshBuilder {
     fn zero_length(&self, c: usize, tol: f64) -> bool {
         let (x, n) = self.mesh.cell_coords(c);
         (0..n).any(|a| (0..a).any(|b| (x[a][0] - x[b][0]).hypot(x[a][1] - x[b][1]) <= tol))
+    }
+
+    /// Puts the 2D cells that are in no group into the group `DEFAULT_GROUP` (MED files
+    /// often leave the bodies' cells without a group; `mesh convert` writes them so).
+    fn default_group(&mut self) -> Result<()> {
+        let mut grouped = vec![false; self.mesh.num_cells()];
+        for cells in self.mesh.cell_groups.values() {
+            for &c in cells {
+                grouped[c] = true;
+            }
+        }
+        let free: Vec<usize> = self.mesh.cells_of_dim(2).filter(|&c| !grouped[c]).collect();
+        if free.is_empty() {
+            return Ok(());
+        }
+        if self.mesh.cell_groups.contains_key(DEFAULT_GROUP)
+            || self.mesh.node_groups.contains_key(DEFAULT_GROUP)
+        {
+            return Err(Error::model(format!(
+                "{}: {} 2D cells (cell {} first) are in no group and would form the default \
+                 group '{DEFAULT_GROUP}', but the mesh already has a group named \
+                 '{DEFAULT_GROUP}'; put those cells in a group or rename that group",
+                self.source,
+                free.len(),
+                self.labels[free[0]]
+            )));
+        }
+        self.mesh
+            .cell_groups
+            .insert(DEFAULT_GROUP.to_string(), free);
+        Ok(())
     }
 
     /// Sign of det J at the reference nodes and the centre of a 2D cell.

@@ -1364,7 +1364,12 @@ $EndElements
         assert_eq!(mesh.kind(0), CellKind::Quad4);
         assert_eq!(mesh.cell_nodes(0), &[0, 1, 2, 3]);
         assert_eq!(mesh.reoriented, 1);
-        assert!(mesh.cell_groups.is_empty());
+        // the cell is in no physical group: it forms the default group
+        let groups: Vec<(&String, &Vec<usize>)> = mesh.cell_groups.iter().collect();
+        assert_eq!(
+            groups,
+            [(&crate::mesh::DEFAULT_GROUP.to_string(), &vec![0])]
+        );
     }
 
     #[test]

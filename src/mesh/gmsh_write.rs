@@ -34,7 +34,7 @@ fn gmsh_type(kind: CellKind) -> u8 {
     }
 }
 
-pub const UNGROUPED: &str = "ungrouped";
+pub const UNGROUPED: &str = super::DEFAULT_GROUP;
 
 /// The element list: (dim, group-set index, kind, nodes) in write order.
 struct Plan {

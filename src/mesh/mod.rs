@@ -3,7 +3,7 @@
 //! | file | what |
 //! |---|---|
 //! | `cell.rs` | `CellKind`: node counts, local edges, orientation permutations |
-//! | `builder.rs` | `MeshBuilder`: readers and generators push nodes, cells and groups; `finish` checks and orients |
+//! | `builder.rs` | `MeshBuilder`: readers and generators push nodes, cells and groups; `finish` checks and orients, and puts 2D cells in no group into `ungrouped` |
 //! | `topology.rs` | edge → parent cell adjacency, outward orientation |
 //! | `quality.rs` | min angle, max aspect ratio, bounding box |
 //! | `gmsh.rs` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
@@ -39,6 +39,10 @@ pub use cell::CellKind;
 
 use crate::error::{Error, Result};
 use std::collections::BTreeMap;
+
+/// The group of the 2D cells that a mesh file puts in no group (every reader makes it; a
+/// mesh group of that name beside such cells is an error).
+pub const DEFAULT_GROUP: &str = "ungrouped";
 
 #[derive(Clone, Debug, Default)]
 pub struct Mesh {

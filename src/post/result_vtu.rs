@@ -29,8 +29,9 @@ pub struct State<'a> {
 /// What stays the same from state to state.
 pub struct Setting<'a> {
     pub mesh: &'a Mesh,
-    /// Group of each material, in the case file's order (cell data `material` = index + 1).
-    pub material_groups: &'a [String],
+    /// Group of each material (None: every 2D cell), in the case file's order (cell data
+    /// `material` = index + 1).
+    pub material_groups: &'a [Option<String>],
 }
 
 fn xyz(v: &[f64]) -> Vec<f64> {
@@ -80,7 +81,11 @@ pub fn write_state(path: &Path, s: &Setting, st: &State) -> Result<()> {
     }
     let mut material = vec![0i32; mesh.num_cells()];
     for (k, g) in s.material_groups.iter().enumerate() {
-        for &c in mesh.cell_groups.get(g).map_or(&[][..], |v| &v[..]) {
+        let cells: Vec<usize> = match g {
+            Some(g) => mesh.cell_groups.get(g).cloned().unwrap_or_default(),
+            None => mesh.cells_of_dim(2).collect(),
+        };
+        for c in cells {
             material[c] = k as i32 + 1;
         }
     }

@@ -44,7 +44,8 @@ pub fn outcome_files(
 ) -> Result<serde_json::Value> {
     let mut files = vec![];
     if case.output.vtu {
-        let materials: Vec<String> = case.material.iter().map(|m| m.group.clone()).collect();
+        let materials: Vec<Option<String>> =
+            case.material.iter().map(|m| m.group.clone()).collect();
         let setting = Setting {
             mesh,
             material_groups: &materials,

@@ -230,7 +230,9 @@ pub fn rectangle(
 
 /// Annular sector r ∈ [r_in, r_out], θ ∈ [0, angle] degrees, n_r × n_theta cells; every
 /// node (mid-side ones too) is placed in polar coordinates, so curved sides follow the
-/// circles. Edge groups Inner, Outer, Start (θ = 0), End (θ = angle).
+/// circles. Edge groups Inner, Outer, Start (θ = 0), End (θ = angle). With angle = 360 the
+/// ring is whole: the seam's nodes are merged, and the groups are Body, Inner and Outer
+/// (closed curves).
 pub fn ring(
     r_in: f64,
     r_out: f64,
@@ -244,9 +246,9 @@ pub fn ring(
             "ring: need 0 < r_in < r_out, got r_in = {r_in}, r_out = {r_out}"
         )));
     }
-    if !(angle_deg > 0.0 && angle_deg < 360.0) {
+    if !(angle_deg > 0.0 && angle_deg <= 360.0) {
         return Err(Error::model(format!(
-            "ring: angle must lie in (0, 360) degrees, got {angle_deg}"
+            "ring: angle must lie in (0, 360] degrees, got {angle_deg}"
         )));
     }
     let a = angle_deg.to_radians();
@@ -256,6 +258,9 @@ pub fn ring(
         [r * th.cos(), r * th.sin()]
     };
     let m = grid(n_r, n_theta, kind, &map, "ring")?;
+    if angle_deg == 360.0 {
+        return whole_ring(&m, r_out);
+    }
     // grid names: s = radius, t = angle → Left = inner, Right = outer, Bottom = start, Top = end
     let mut b = MeshBuilder::new("ring");
     b.append(&m, |g| {
@@ -268,6 +273,46 @@ pub fn ring(
         }
         .to_string()
     });
+    b.finish()
+}
+
+/// The grid of a ring swept over 360°, its seam closed: the nodes at θ = 360° are those
+/// at θ = 0 (y = 0, x > 0). Groups: Body, Inner, Outer.
+fn whole_ring(m: &Mesh, r_out: f64) -> Result<Mesh> {
+    let tol = 1e-9 * r_out;
+    let mut seam: Vec<(f64, usize)> = vec![];
+    let mut same: Vec<usize> = (0..m.num_nodes()).collect();
+    for (i, x) in m.coords.iter().enumerate() {
+        if x[1].abs() <= tol && x[0] > 0.0 {
+            match seam.iter().find(|s| (s.0 - x[0]).abs() <= tol) {
+                Some(&(_, j)) => same[i] = j,
+                None => seam.push((x[0], i)),
+            }
+        }
+    }
+    let mut b = MeshBuilder::new("ring");
+    let mut index = vec![usize::MAX; m.num_nodes()];
+    for i in 0..m.num_nodes() {
+        if same[i] == i {
+            index[i] = b.add_node(m.coords[i]);
+        }
+    }
+    let mut kept = vec![usize::MAX; m.num_cells()];
+    for c in 0..m.num_cells() {
+        let nodes: Vec<usize> = m.cell_nodes(c).iter().map(|&n| index[same[n]]).collect();
+        // the edges along the seam are inside the whole ring now
+        let on_seam = m.kind(c).dim() == 1 && nodes.iter().all(|&n| b.coords()[n][1] == 0.0);
+        if m.kind(c).dim() != 0 && !on_seam {
+            kept[c] = b.add_cell(m.kind(c), &nodes, c as u64 + 1);
+        }
+    }
+    for (from, to) in [("Body", "Body"), ("Left", "Inner"), ("Right", "Outer")] {
+        for &c in m.cell_group(from)? {
+            if kept[c] != usize::MAX {
+                b.add_to_cell_group(to, kept[c]);
+            }
+        }
+    }
     b.finish()
 }
 
@@ -316,6 +361,40 @@ mod tests {
         }
         assert_eq!(lin.cell_group("Outer").unwrap().len(), 16);
         assert_eq!(lin.cell_group("Start").unwrap().len(), 4);
+    }
+
+    #[test]
+    fn whole_ring_is_closed() {
+        let exact = std::f64::consts::PI * (4.0 - 1.0);
+        for kind in [CellKind::Quad4, CellKind::Quad8, CellKind::Tri6] {
+            let m = ring(1.0, 2.0, 2, 24, 360.0, kind).unwrap();
+            let tol = if kind == CellKind::Quad4 { 2e-2 } else { 1e-5 };
+            assert!(
+                (area(&m) - exact).abs() < tol * exact,
+                "{kind}: {}",
+                area(&m)
+            );
+            // closed circles: every node of a circle is on two of its edges
+            for g in ["Inner", "Outer"] {
+                let mut count = vec![0; m.num_nodes()];
+                for &c in m.cell_group(g).unwrap() {
+                    let nodes = m.cell_nodes(c);
+                    count[nodes[0]] += 1;
+                    count[nodes[1]] += 1;
+                }
+                assert!(count.iter().all(|&k| k == 0 || k == 2), "{kind} {g}");
+                assert_eq!(m.cell_group(g).unwrap().len(), 24);
+            }
+            let names: Vec<String> = m.cell_groups.keys().cloned().collect();
+            assert_eq!(names, ["Body", "Inner", "Outer"]);
+            let per_ring = if kind.is_quadratic() { 48 } else { 24 };
+            let expected = match kind {
+                CellKind::Quad4 => 3 * 24,
+                CellKind::Quad8 => 3 * per_ring + 2 * 24,
+                _ => 3 * per_ring + 2 * 48,
+            };
+            assert_eq!(m.num_nodes(), expected, "{kind}");
+        }
     }
 
     #[test]
