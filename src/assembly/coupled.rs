@@ -141,7 +141,16 @@ impl CoupledMatrix {
             }
         }
         if scatter.len() < targets.len() {
-            let key = sorted_unique(n, targets.iter().map(|t| (t.0, t.1)));
+            // the pattern only grows (a pair that sends its explicit zeros only when its
+            // candidates change keeps them when another pair's new entries force a rebuild)
+            let old: &[(usize, usize)] = if fits { &self.key } else { &[] };
+            let key = sorted_unique(
+                n,
+                targets
+                    .iter()
+                    .map(|t| (t.0, t.1))
+                    .chain(old.iter().copied()),
+            );
             if key != self.key || !fits {
                 self.rebuild(solid, n, &key);
                 self.key = key;

@@ -50,6 +50,7 @@ use friction::Branch;
 use linearisation::linear_tangent;
 use segments::CellTerms;
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
 
 /// The matrix pattern holds the couplings of the master cells within this many cell
 /// sizes of each slave cell (the pairing itself uses one), so that a contact zone growing
@@ -75,6 +76,10 @@ pub struct Mortar {
     /// cell sizes initially, and every candidate found since): the matrix pattern covers
     /// their couplings, so re-pairing as the bodies deform keeps it (and its analysis).
     pattern_candidates: Vec<Vec<usize>>,
+    /// Changes whenever `pattern_candidates` grows; the generation whose pattern zeros
+    /// `contribute` last sent (usize::MAX: none yet).
+    pattern_generation: usize,
+    pattern_sent: AtomicUsize,
     /// The candidates at the start of the load step (restored when it is cut).
     saved_candidates: Vec<Vec<usize>>,
     active: Vec<bool>,
@@ -138,14 +143,18 @@ pub struct Mortar {
 }
 
 /// Adds each slave cell's `found` master cells to its pattern candidates.
-fn add_to_pattern(pattern: &mut [Vec<usize>], found: &[Vec<usize>]) {
+/// Whether any was new.
+fn add_to_pattern(pattern: &mut [Vec<usize>], found: &[Vec<usize>]) -> bool {
+    let mut grew = false;
     for (p, f) in pattern.iter_mut().zip(found) {
         for &im in f {
             if !p.contains(&im) {
                 p.push(im);
+                grew = true;
             }
         }
     }
+    grew
 }
 
 impl Mortar {
@@ -200,6 +209,8 @@ impl Mortar {
             master_cells_of_node,
             saved_candidates: candidates.clone(),
             pattern_candidates,
+            pattern_generation: 0,
+            pattern_sent: AtomicUsize::new(usize::MAX),
             candidates,
             active: vec![],
             saved: vec![],
@@ -436,7 +447,12 @@ impl ContactPair for Mortar {
             });
         }
         // pattern: every dof a cell may read couples with every dof and multiplier of its
-        // cells
+        // cells; the matrix keeps a pattern once built, so these zeros are sent only when
+        // the pattern's candidates have changed since they were last sent
+        let generation = self.pattern_generation;
+        if self.pattern_sent.swap(generation, Ordering::Relaxed) == generation {
+            return;
+        }
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             let nodes = self.nodes_in_pattern(mesh, ic);
             let mut mults: Vec<usize> = mesh
@@ -481,7 +497,9 @@ impl ContactPair for Mortar {
         let mut changed = vec![];
         if near != self.candidates {
             changes += 1;
-            add_to_pattern(&mut self.pattern_candidates, &near);
+            if add_to_pattern(&mut self.pattern_candidates, &near) {
+                self.pattern_generation += 1;
+            }
             self.candidates = near;
         }
         let (g, d, facing, sl) = self.gaps(mesh, u);
