@@ -88,7 +88,6 @@ fn time_rings() {
         "rings: {} nodes, 21 load steps, large kinematics",
         mesh.num_nodes()
     );
-    let mut base: Option<f64> = None;
     // (a formulation named on the command line alone: for profiling)
     let only: Option<String> = std::env::args().nth(1).filter(|a| !a.starts_with('-'));
     let formulations: Vec<&str> = ["point-to-segment", "node-to-segment", "mortar"]
