@@ -39,6 +39,14 @@ pub trait ContactPair {
     fn linearised_status(&mut self, _mesh: &Mesh, _u: &[f64], _lam: &[f64]) -> Option<usize> {
         None
     }
+    /// Opens every status (no contact, no friction) when no slave node penetrates the
+    /// master in the undeformed geometry, and says whether it did: with nothing loading
+    /// the bodies, the rest state is then the solution (a discretisation of the gap that
+    /// sees a touching point as slightly closed, as dual mortar's weighted gap does, must
+    /// not lift the bodies apart). False where the rest state is not checked so.
+    fn open_at_rest(&mut self, _mesh: &Mesh) -> bool {
+        false
+    }
     /// The load step converged at displacement u.
     fn commit(&mut self, u: &[f64]);
     fn restore(&mut self);

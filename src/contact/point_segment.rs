@@ -1338,6 +1338,22 @@ impl super::pair::ContactPair for PointToSegment {
     fn changed_nodes(&self) -> Vec<usize> {
         self.changed.clone()
     }
+    fn open_at_rest(&mut self, mesh: &Mesh) -> bool {
+        let u = vec![0.0; 2 * mesh.num_nodes()];
+        // (round-off of a touching point's gap: a millionth of the touch tolerance)
+        let tol = 1e-6 * self.touch_tolerance(mesh);
+        let penetrating = (0..self.points.len()).any(|i| {
+            let p = &self.points[i];
+            !p.excluded && !p.left_out && self.eval(mesh, &u, i).d > tol
+        });
+        if penetrating {
+            return false;
+        }
+        for p in &mut self.points {
+            p.active = false;
+        }
+        true
+    }
     fn surfaces(&self) -> (&Surface, &Surface) {
         (&self.slave, &self.master)
     }

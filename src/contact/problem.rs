@@ -165,6 +165,18 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn restart_statuses(&mut self) {
+        let mesh = self.solid.mesh;
+        for p in &mut self.pairs {
+            p.initialise(mesh);
+        }
+    }
+
+    fn open_at_rest(&mut self) -> bool {
+        let mesh = self.solid.mesh;
+        self.pairs.iter_mut().all(|p| p.open_at_rest(mesh))
+    }
+
     fn changed_nodes(&self) -> Vec<usize> {
         self.pairs.iter().flat_map(|p| p.changed_nodes()).collect()
     }

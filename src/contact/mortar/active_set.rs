@@ -84,23 +84,38 @@ impl Mortar {
     /// averaged normal, is below 1e-6 of the adjacent slave cell size. (The weighted gap of
     /// a single touching point is positive, so it cannot start the active set.)
     pub(super) fn touching(&self, mesh: &Mesh, u: &[f64], n: usize) -> bool {
+        // a mid-side node: only with an initial gap (a touching point is a corner)
+        if !self.cells_of_node.contains_key(&n) && self.initial_gap.is_none() {
+            return false;
+        }
+        self.nodal_gaps(mesh, u, n)
+            .iter()
+            .any(|&(gap, size)| gap <= self.initial_gap.unwrap_or(1e-6 * size))
+    }
+
+    /// Slave node n's own gaps (negative: penetrating) to the master cells it projects on,
+    /// along its averaged normal (a mid-side node: its cell's normal there), each with the
+    /// size of the slave cell it was measured from.
+    pub(super) fn nodal_gaps(&self, mesh: &Mesh, u: &[f64], n: usize) -> Vec<(f64, f64)> {
         let mid_cells: Vec<usize>;
         let cells = match self.cells_of_node.get(&n) {
             Some(c) => c,
-            // a mid-side node: only with an initial gap (a touching point is a corner)
-            None if self.initial_gap.is_some() => {
+            None => {
                 mid_cells = (0..self.slave.cells.len())
                     .filter(|&ic| mesh.cell_nodes(self.slave.cells[ic]).contains(&n))
                     .collect();
                 &mid_cells
             }
-            None => return false,
         };
+        let mut out = vec![];
+        if cells.is_empty() {
+            return out;
+        }
         let x = Self::pos(mesh, u, n);
         let nv = if self.cells_of_node.contains_key(&n) {
             self.node_normal(mesh, u, n)
         } else {
-            self.cell_normal(mesh, u, cells[0], 0.0) // mid-side: its cell's normal there
+            self.cell_normal(mesh, u, cells[0], 0.0)
         };
         for &ic in cells {
             let sn = mesh.cell_nodes(self.slave.cells[ic]);
@@ -124,14 +139,11 @@ impl Mortar {
                 }
                 if xi.abs() <= 1.0 + 1e-9 {
                     let (pm, _) = point_and_tangent(mesh.kind(mc), &xm, xi);
-                    let gap = (pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1];
-                    if gap <= self.initial_gap.unwrap_or(1e-6 * size) {
-                        return true;
-                    }
+                    out.push(((pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1], size));
                 }
             }
         }
-        false
+        out
     }
 
     /// Weighted gaps, D_j, whether each slave node faces the master surface (at least

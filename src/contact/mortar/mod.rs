@@ -540,6 +540,25 @@ impl ContactPair for Mortar {
         self.changed.clone()
     }
 
+    fn open_at_rest(&mut self, mesh: &Mesh) -> bool {
+        // (with adjust the rest state keeps its removed overlaps: not checked here)
+        if self.adjust.is_some() {
+            return false;
+        }
+        let u = vec![0.0; 2 * mesh.num_nodes()];
+        let penetrating = self.mult_nodes.iter().any(|&n| {
+            self.nodal_gaps(mesh, &u, n)
+                .iter()
+                .any(|&(gap, size)| gap < -1e-9 * size)
+        });
+        if penetrating {
+            return false;
+        }
+        self.active.fill(false);
+        self.law.fill(Branch::Free);
+        true
+    }
+
     fn status_signature(&self) -> u64 {
         use std::hash::{Hash, Hasher};
         let mut h = std::collections::hash_map::DefaultHasher::new();
