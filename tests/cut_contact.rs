@@ -52,15 +52,28 @@ struct Outcome {
 }
 
 /// The cut block: lower half nx_l cells wide, upper half nx_u (equal: the lips of one
-/// cut mesh match), joined at (W, 0).
-fn solve(kind: CellKind, nx_l: usize, nx_u: usize, formulation: &str, extra: &str) -> Outcome {
+/// cut mesh match), joined at (W, 0); the upper lip named slave, the lower one if `swap`.
+fn solve(
+    kind: CellKind,
+    (nx_l, nx_u, swap): (usize, usize, bool),
+    formulation: &str,
+    extra: &str,
+) -> Outcome {
     let lower = rectangle([0.0, -1.0], W, 1.0, nx_l, 2, kind, 0.0).unwrap();
     let upper = rectangle([0.0, 0.0], W, 1.0, nx_u, 2, kind, 0.0).unwrap();
     let mesh = bodies_joined_at(&[("Lower", &lower), ("Upper", &upper)], [W, 0.0]);
     // one connected mesh
     let b = node_bodies(&mesh);
     assert!(b.iter().all(|&x| x == b[0]), "one body");
-    let case: CaseFile = toml::from_str(&case_text(formulation, extra)).unwrap();
+    let mut text = case_text(formulation, extra);
+    if swap {
+        // the finer lip as slave
+        text = text
+            .replace("slave = \"UpperBottom\"", "slave = \"X\"")
+            .replace("master = \"LowerTop\"", "master = \"UpperBottom\"")
+            .replace("slave = \"X\"", "slave = \"LowerTop\"");
+    }
+    let case: CaseFile = toml::from_str(&text).unwrap();
     let out = run(&case, &mesh, false).unwrap();
     let joint = (0..mesh.num_nodes())
         .find(|&n| mesh.coords[n] == [W, 0.0])
@@ -88,7 +101,7 @@ fn solve(kind: CellKind, nx_l: usize, nx_u: usize, formulation: &str, extra: &st
         .find(|&&(n, _)| n == joint)
         .map(|&(_, p)| p);
     println!(
-        "{kind} {nx_l}/{nx_u} {formulation} {extra}: u error {:.2e}, shared {shared:?}, p {pressures:?}",
+        "{kind} {nx_l}/{nx_u} swap {swap} {formulation} {extra}: u error {:.2e}, shared {shared:?}, p {pressures:?}",
         err / scale
     );
     Outcome {
@@ -115,17 +128,22 @@ fn mortar_passes_the_patch_test_across_a_cut() {
         CellKind::Tri3,
         CellKind::Tri6,
     ] {
-        // matching lips (a mesh cut along a line), and lips that do not match where the
-        // multipliers' side is the finer one at the shared node (its cell there lies within
-        // the other side's, so the constant pressure is in the weak space there too)
+        // matching lips (a mesh cut along a line), and lips that do not match, either one
+        // named slave (the multipliers go on the lip finer at the shared node by themselves)
         // (the default start: the touching nodes; every node; with friction)
         let starts = ["", "initial = \"all\"", "friction = 0.3"];
-        for ((nx_l, nx_u), extra) in [(4, 4), (4, 5)]
-            .into_iter()
-            .flat_map(|m| starts.map(|e| (m, e)))
+        for (mesh, extra) in [
+            (4, 4, false),
+            (4, 5, false),
+            (5, 4, false),
+            (5, 4, true),
+            (4, 5, true),
+        ]
+        .into_iter()
+        .flat_map(|m| starts.map(|e| (m, e)))
         {
-            let o = solve(kind, nx_l, nx_u, "mortar", extra);
-            let what = format!("{kind} {nx_l}/{nx_u} {extra}");
+            let o = solve(kind, mesh, "mortar", extra);
+            let what = format!("{kind} {mesh:?} {extra}");
             assert!(o.pressures.len() >= 4, "{what}: {:?}", o.pressures);
             assert!(worst(&o.pressures) < 1e-8, "{what}: {:?}", o.pressures);
             assert!(o.u_error < 1e-8, "{what}: u error {}", o.u_error);
@@ -155,8 +173,7 @@ fn point_and_node_to_segment_are_exact_across_a_cut() {
         ] {
             let o = solve(
                 kind,
-                4,
-                4,
+                (4, 4, false),
                 f,
                 &format!("integration = \"{i}\"\ninitial = \"all\""),
             );

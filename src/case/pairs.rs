@@ -357,7 +357,28 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             "point-to-segment" | "node-to-segment" => {}
             "mortar" => {
                 one_body()?;
-                let (slave, master, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
+                let (mut slave, mut master, _) =
+                    crate::contact::mortar::multiplier_side(mesh, slave, master);
+                // Across a cut, the multipliers go on the lip finer at the shared node: the
+                // shared node carries none, and the constant pressure stays in the weak
+                // space only where the multiplier side's cell there lies within the other's
+                // (the patch test is exact then; else off by that cell's share).
+                if !shared.is_empty() {
+                    let end = |s: &Surface| -> f64 {
+                        s.cells
+                            .iter()
+                            .map(|&e| mesh.cell_nodes(e))
+                            .filter(|n| n.iter().any(|k| shared.contains(k)))
+                            .map(|n| {
+                                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+                                (a[0] - b[0]).hypot(a[1] - b[1])
+                            })
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    if end(&slave) > (1.0 + 1e-9) * end(&master) {
+                        std::mem::swap(&mut slave, &mut master);
+                    }
+                }
                 // complementarity parameter: the softest E over the shortest slave cell
                 let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
                 // adjust absorbs a discretisation mismatch, a fraction of a cell; removing a
