@@ -25,7 +25,7 @@ use crate::assembly::dofs::{DofMap, Relation};
 use crate::assembly::Assembler;
 use crate::error::{Error, Result};
 use crate::fem::material::{Elastic, Modelisation};
-use crate::fem::solid::{Kinematics, SolidModel};
+use crate::fem::solid::SolidModel;
 use crate::mesh::{generate, CellKind, Mesh};
 use crate::solver::problem::SolidProblem;
 use schema::CaseFile;
@@ -151,11 +151,6 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
     checks::check(case)?;
     sizes::check_model(case, mesh)?;
     let m = &case.model;
-    if m.modelisation == Modelisation::PlaneStress && m.kinematics == Kinematics::Large {
-        return Err(Error::model(
-            "[model] large kinematics is not available in plane stress; use plane_strain or axisymmetric",
-        ));
-    }
     if m.thickness.is_nan() || m.thickness <= 0.0 {
         return Err(Error::model(format!(
             "[model] thickness must be positive, got {}",

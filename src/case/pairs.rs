@@ -146,6 +146,58 @@ fn on_symmetry_lines(case: &CaseFile, mesh: &Mesh, m: &Mortar) -> Vec<usize> {
     out
 }
 
+/// For two surfaces of one body: the slave node that lies deepest behind the master (its
+/// nearest orthogonal projection on a master chord on the inner side of the master's
+/// outward normal), when deeper than half the shortest slave chord: (node, depth). Two
+/// surfaces that face away from each other (a body's top and bottom) are so: between two
+/// bodies the overlap check refuses it, but here the slave node is on the boundary of the
+/// master's own body, not inside it.
+fn behind_master(mesh: &Mesh, slave: &Surface, master: &Surface) -> Option<(usize, f64)> {
+    let chord = |c: usize| {
+        let n = mesh.cell_nodes(c);
+        (mesh.coords[n[0]], mesh.coords[n[1]])
+    };
+    let h = slave
+        .cells
+        .iter()
+        .map(|&c| {
+            let (a, b) = chord(c);
+            (b[0] - a[0]).hypot(b[1] - a[1])
+        })
+        .fold(f64::INFINITY, f64::min);
+    let mut worst: Option<(usize, f64)> = None;
+    for &n in &slave.nodes {
+        if master.nodes.binary_search(&n).is_ok() {
+            continue;
+        }
+        let p = mesh.coords[n];
+        // (distance, signed gap) of the nearest orthogonal projection
+        let mut nearest: Option<(f64, f64)> = None;
+        for (k, &c) in master.cells.iter().enumerate() {
+            let (a, b) = chord(c);
+            let t = [b[0] - a[0], b[1] - a[1]];
+            let l2 = t[0] * t[0] + t[1] * t[1];
+            let s = ((p[0] - a[0]) * t[0] + (p[1] - a[1]) * t[1]) / l2;
+            if !(0.0..=1.0).contains(&s) {
+                continue;
+            }
+            let d = [p[0] - a[0] - s * t[0], p[1] - a[1] - s * t[1]];
+            let sign = if master.ccw[k] { 1.0 } else { -1.0 };
+            let gap = sign * (d[0] * t[1] - d[1] * t[0]) / l2.sqrt();
+            let dist = d[0].hypot(d[1]);
+            if nearest.is_none_or(|(m, _)| dist < m) {
+                nearest = Some((dist, gap));
+            }
+        }
+        if let Some((_, gap)) = nearest.filter(|&(_, g)| g < -0.5 * h) {
+            if worst.is_none_or(|(_, w)| -gap > w) {
+                worst = Some((n, -gap));
+            }
+        }
+    }
+    worst
+}
+
 /// The contact pairs of a case.
 pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPair>>> {
     let mut pairs: Vec<Box<dyn ContactPair>> = vec![];
@@ -175,19 +227,55 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
         let master = Surface::from_group(mesh, &c.master, "master")
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
-        // Checked after the options, so that their errors come first.
-        let same_body = || -> Result<()> {
-            let of = |s: &Surface| -> std::collections::BTreeSet<usize> {
-                s.nodes.iter().map(|&n| bodies[n]).collect()
-            };
-            if of(&slave).is_disjoint(&of(&master)) {
-                return Ok(());
+        // Two edge groups of one connected mesh (a body cut along a line, bodies sharing
+        // nodes) may be in contact; a node of both surfaces (where a cut ends) would be in
+        // contact with itself, its gap zero whatever the motion and its multiplier free: it
+        // is left out of contact as `exclude` would.
+        let shared: Vec<usize> = slave
+            .nodes
+            .iter()
+            .copied()
+            .filter(|n| master.nodes.binary_search(n).is_ok())
+            .collect();
+        if shared.len() == slave.nodes.len() || shared.len() == master.nodes.len() {
+            return Err(Error::model(format!(
+                "{what}: every node of '{}' is also a node of '{}': the surfaces must be \
+                 distinct (self-contact of one surface folding onto itself is not supported)",
+                if shared.len() == slave.nodes.len() {
+                    &c.slave
+                } else {
+                    &c.master
+                },
+                if shared.len() == slave.nodes.len() {
+                    &c.master
+                } else {
+                    &c.slave
+                },
+            )));
+        }
+        // (checked after the options, so that their errors come first)
+        let one_body = || -> Result<()> {
+            if shared.is_empty() {
+                let of = |s: &Surface| -> std::collections::BTreeSet<usize> {
+                    s.nodes.iter().map(|&n| bodies[n]).collect()
+                };
+                if of(&slave).is_disjoint(&of(&master)) {
+                    return Ok(());
+                }
             }
+            let Some((n, depth)) = behind_master(mesh, &slave, &master)
+                .or_else(|| behind_master(mesh, &master, &slave))
+            else {
+                return Ok(());
+            };
             Err(Error::model(format!(
-                "{what}: '{}' and '{}' belong to the same body (its cells are connected \
-                 through shared nodes); self-contact is not supported: split the body or pick \
-                 surfaces of two bodies",
-                c.slave, c.master
+                "{what}: '{}' and '{}' are surfaces of one body that face away from each \
+                 other: node {} lies {depth:.3e} behind the other surface, inside the body \
+                 (contact inside one mesh is between surfaces that face each other across a \
+                 cut or a gap)",
+                c.slave,
+                c.master,
+                n + 1
             )))
         };
         let integration = match c.integration.as_str() {
@@ -268,8 +356,29 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         match c.formulation.as_str() {
             "point-to-segment" | "node-to-segment" => {}
             "mortar" => {
-                same_body()?;
-                let (slave, master, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
+                one_body()?;
+                let (mut slave, mut master, _) =
+                    crate::contact::mortar::multiplier_side(mesh, slave, master);
+                // Across a cut, the multipliers go on the lip finer at the shared node: the
+                // shared node carries none, and the constant pressure stays in the weak
+                // space only where the multiplier side's cell there lies within the other's
+                // (the patch test is exact then; else off by that cell's share).
+                if !shared.is_empty() {
+                    let end = |s: &Surface| -> f64 {
+                        s.cells
+                            .iter()
+                            .map(|&e| mesh.cell_nodes(e))
+                            .filter(|n| n.iter().any(|k| shared.contains(k)))
+                            .map(|n| {
+                                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+                                (a[0] - b[0]).hypot(a[1] - b[1])
+                            })
+                            .fold(f64::INFINITY, f64::min)
+                    };
+                    if end(&slave) > (1.0 + 1e-9) * end(&master) {
+                        std::mem::swap(&mut slave, &mut master);
+                    }
+                }
                 // complementarity parameter: the softest E over the shortest slave cell
                 let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
                 // adjust absorbs a discretisation mismatch, a fraction of a cell; removing a
@@ -302,7 +411,8 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 mortar.pressure_floor = 1e-6 * e_min;
                 // exclude names slave nodes; where the multipliers went to the master
                 // surface (the coarser one), the multiplier node at the same place
-                let nodes = group_nodes(mesh, &c.exclude, &what, "exclude")?;
+                let mut nodes = group_nodes(mesh, &c.exclude, &what, "exclude")?;
+                nodes.extend(shared.iter().filter(|n| !nodes.contains(n)).collect::<Vec<_>>());
                 for &n in &nodes {
                     let k = match multiplier_indices(mesh, &mortar, &[n]) {
                         Ok(k) if !k.is_empty() => k[0],
@@ -316,8 +426,10 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                             )))
                         }
                     };
-                    mortar.contact_excluded.push(k);
-                    mortar.excluded_nodes.push(mortar.mult_nodes[k]);
+                    if !mortar.contact_excluded.contains(&k) {
+                        mortar.contact_excluded.push(k);
+                        mortar.excluded_nodes.push(mortar.mult_nodes[k]);
+                    }
                 }
                 if c.friction > 0.0 {
                     mortar.friction = Some(c.friction);
@@ -346,7 +458,12 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         let (e_min, h_min) = stiffness_scale(case, mesh, &slave);
         let friction_excluded =
             slave_nodes(mesh, &slave, &c.friction_exclude, &what, "friction_exclude")?;
-        let contact_excluded = slave_nodes(mesh, &slave, &c.exclude, &what, "exclude")?;
+        let mut contact_excluded = slave_nodes(mesh, &slave, &c.exclude, &what, "exclude")?;
+        for &n in &shared {
+            if !contact_excluded.contains(&n) {
+                contact_excluded.push(n);
+            }
+        }
         let opts = point_segment::Options {
             integration,
             node_to_segment,
@@ -369,7 +486,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             },
             ..Default::default()
         };
-        same_body()?;
+        one_body()?;
         let mut pair = PointToSegment::new(
             mesh,
             slave,

@@ -1,6 +1,12 @@
 //! Element residual (internal forces) and tangent of one solid cell, for small strain or
 //! total-Lagrangian finite strain (Green–Lagrange strain, St Venant–Kirchhoff), in plane
-//! strain, plane stress (small strain only) and axisymmetry.
+//! strain, plane stress and axisymmetry.
+//!
+//! Plane stress with large kinematics: St Venant–Kirchhoff is linear in E, so S_33 = 0
+//! gives E_33 = −λ/(λ+2μ)(E_11+E_22) exactly and the in-plane S is the plane-stress law
+//! with the reduced λ' = 2λμ/(λ+2μ) (the plane-stress elasticity matrix, unchanged). The
+//! weak form is per unit reference thickness (total Lagrangian, ∫ S : δE dV₀); the
+//! thickness stretch λ₃ = √(1 + 2E_33) enters only the Cauchy stress, through J = det F·λ₃.
 //!
 //! Element dofs are ordered node by node: [u_x0, u_y0, u_x1, u_y1, ...].
 
@@ -281,8 +287,8 @@ pub enum StressMeasure {
 }
 
 /// Stress at each quadrature point of the stiffness rule, [xx, yy, zz, xy]: Cauchy stress
-/// for large kinematics (σ = J⁻¹ F S Fᵀ), the linear stress otherwise. In plane stress
-/// σ_zz = 0. Writes `rule.len()` entries into `out`.
+/// for large kinematics (σ = J⁻¹ F S Fᵀ, J = det F·F_zz with F_zz the thickness stretch in
+/// plane stress), the linear stress otherwise. In plane stress σ_zz = 0. Writes `rule.len()` entries into `out`.
 pub fn gauss_stresses(
     kind: CellKind,
     x: &[[f64; 2]],
@@ -291,6 +297,19 @@ pub fn gauss_stresses(
     out: &mut [[f64; 4]],
 ) -> Result<(), BadJacobian> {
     gauss_stresses_as(kind, x, u, sm, StressMeasure::Cauchy, out)
+}
+
+/// The thickness stretch λ₃ = √(1 + 2E_33) of plane stress with large kinematics, from the
+/// in-plane Green–Lagrange strain [xx, yy, zz, γxy]: E_33 = −λ/(λ+2μ)(E_11+E_22), exact for
+/// St Venant–Kirchhoff (S_33 = 0). NaN when 1 + 2E_33 ≤ 0 (the law has no thickness left
+/// there: an in-plane stretch far beyond its range).
+pub fn thickness_stretch(material: &Elastic, e: &[f64; 4]) -> f64 {
+    let c = 1.0 + 2.0 * material.plane_stress_ezz(e[0], e[1]);
+    if c > 0.0 {
+        c.sqrt()
+    } else {
+        f64::NAN
+    }
 }
 
 /// `gauss_stresses` in the given measure.
@@ -307,8 +326,11 @@ pub fn gauss_stresses_as(
     let rule = stiffness_rule(kind);
     for (q, &xi) in rule.points.iter().enumerate() {
         let g = point_geometry(kind, x, xi, rule.weights[q], sm).ok_or(BadJacobian)?;
-        let (f, fzz, e) = strain_at(&g, nn, u, sm);
+        let (f, mut fzz, e) = strain_at(&g, nn, u, sm);
         let s = apply(&d, &e);
+        if sm.model == Modelisation::PlaneStress {
+            fzz = thickness_stretch(&sm.material, &e);
+        }
         out[q] = match (sm.kinematics, measure) {
             (Kinematics::Small, _) | (_, StressMeasure::Pk2) => s,
             (Kinematics::Large, StressMeasure::Cauchy) => {
@@ -374,9 +396,6 @@ mod tests {
                 Modelisation::Axisymmetric,
             ] {
                 for k in [Kinematics::Small, Kinematics::Large] {
-                    if m == Modelisation::PlaneStress && k == Kinematics::Large {
-                        continue;
-                    }
                     let sm = model(m, k);
                     let x = distorted(kind);
                     let nn = kind.num_nodes();

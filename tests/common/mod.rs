@@ -142,3 +142,40 @@ pub fn group_sum(mesh: &Mesh, group: &str, values: &[f64]) -> (f64, f64) {
             (x + values[2 * n], y + values[2 * n + 1])
         })
 }
+
+/// Bodies in one mesh as `bodies` makes them, but joined at one point: the nodes of the
+/// parts at `at` (within 1e-9) become one node, so the mesh is one connected body (cut
+/// along the parts' common boundary but for that point).
+pub fn bodies_joined_at(parts: &[(&str, &Mesh)], at: [f64; 2]) -> Mesh {
+    let mut b = tribo::mesh::MeshBuilder::new("joined bodies");
+    let mut joint: Option<usize> = None;
+    for (prefix, m) in parts {
+        let ids: Vec<usize> = m
+            .coords
+            .iter()
+            .map(|&x| {
+                if (x[0] - at[0]).hypot(x[1] - at[1]) <= 1e-9 {
+                    *joint.get_or_insert_with(|| b.add_node(x))
+                } else {
+                    b.add_node(x)
+                }
+            })
+            .collect();
+        let first = b.num_cells();
+        for c in 0..m.num_cells() {
+            let nodes: Vec<usize> = m.cell_nodes(c).iter().map(|&n| ids[n]).collect();
+            b.add_cell(m.kind(c), &nodes, (first + c + 1) as u64);
+        }
+        for (name, cells) in &m.cell_groups {
+            for &c in cells {
+                b.add_to_cell_group(&format!("{prefix}{name}"), first + c);
+            }
+        }
+        for (name, nodes) in &m.node_groups {
+            for &n in nodes {
+                b.add_to_node_group(&format!("{prefix}{name}"), ids[n]);
+            }
+        }
+    }
+    b.finish().unwrap()
+}
