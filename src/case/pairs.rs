@@ -324,6 +324,14 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 c.friction
             )));
         }
+        // (μ μ p overflows long before; an interface that never slips needs a μ of a few)
+        if c.friction > 1e6 {
+            return Err(Error::model(format!(
+                "{what}: friction = {:e} is beyond any Coulomb coefficient (at most 1e6; an \
+                 interface that never slips needs a μ of a few, e.g. 10)",
+                c.friction
+            )));
+        }
         if let Some(a) = c.adjust {
             if !(a.is_finite() && a >= 0.0) || c.formulation != "mortar" {
                 return Err(Error::model(format!(
