@@ -21,6 +21,9 @@ pub trait ContactPair {
         k: &mut Triplets,
         mult_base: usize,
     );
+    /// Whether the next `contribute` calls need the tangent triplets (a residual alone
+    /// may skip their costly part); they do until told otherwise.
+    fn set_tangent_wanted(&self, _wanted: bool) {}
     /// Updates statuses (and pairing) from the iterate; returns how many changed.
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
     /// Slave nodes whose status changed in the last `update_status` (for failure messages:

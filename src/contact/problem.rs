@@ -75,6 +75,50 @@ impl<'m> ContactProblem<'m> {
     pub fn pattern_rebuilds(&self) -> usize {
         self.coupled.rebuilds
     }
+
+    /// Sets the state, writes the residual, assembles the solid tangent and the coupled
+    /// matrix with the contact tangent as asked (a residual alone skips the contact
+    /// tangent's costly part).
+    fn evaluate_with(
+        &mut self,
+        x: &[f64],
+        lambda: f64,
+        r: &mut [f64],
+        solid_tangent: bool,
+        contact_tangent: bool,
+    ) -> Result<Norms> {
+        let nf = self.solid.num_free();
+        self.solid.set_state(&x[..nf], lambda, solid_tangent)?;
+        self.lam.copy_from_slice(&x[nf..]);
+        self.ru.fill(0.0);
+        r[nf..].fill(0.0);
+        self.triplets.clear();
+        let mesh = self.solid.mesh;
+        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            p.set_tangent_wanted(contact_tangent);
+            p.contribute(
+                mesh,
+                &self.solid.u,
+                &self.lam[base..base + n],
+                &mut self.ru,
+                &mut r[nf + base..nf + base + n],
+                &mut self.triplets,
+                base,
+            );
+            p.set_tangent_wanted(true);
+        }
+        let mut norms = self.solid.finish_residual(Some(&self.ru), &mut r[..nf]);
+        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            let c = p.constraint_residual(&r[nf + base..nf + base + n], &self.lam[base..base + n]);
+            norms.constraint = norms.constraint.max(c);
+        }
+        if contact_tangent {
+            self.update_matrix();
+        }
+        Ok(norms)
+    }
 }
 
 impl Nonlinear for ContactProblem<'_> {
@@ -109,42 +153,12 @@ impl Nonlinear for ContactProblem<'_> {
         r: &mut [f64],
         with_tangent: bool,
     ) -> Result<Norms> {
-        let nf = self.solid.num_free();
-        self.solid.set_state(&x[..nf], lambda, with_tangent)?;
-        self.lam.copy_from_slice(&x[nf..]);
-        self.ru.fill(0.0);
-        r[nf..].fill(0.0);
-        self.triplets.clear();
-        let mesh = self.solid.mesh;
-        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
-            let n = p.num_multipliers();
-            p.contribute(
-                mesh,
-                &self.solid.u,
-                &self.lam[base..base + n],
-                &mut self.ru,
-                &mut r[nf + base..nf + base + n],
-                &mut self.triplets,
-                base,
-            );
-        }
-        let mut norms = self.solid.finish_residual(Some(&self.ru), &mut r[..nf]);
-        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
-            let n = p.num_multipliers();
-            let c = p.constraint_residual(&r[nf + base..nf + base + n], &self.lam[base..base + n]);
-            norms.constraint = norms.constraint.max(c);
-        }
-        if with_tangent {
-            self.update_matrix();
-        }
-        Ok(norms)
+        self.evaluate_with(x, lambda, r, with_tangent, with_tangent)
     }
 
     fn evaluate_contact_tangent(&mut self, x: &[f64], lambda: f64, r: &mut [f64]) -> Result<Norms> {
         // the solid matrix keeps the last assembled tangent; contact terms are current
-        let norms = self.evaluate(x, lambda, r, false)?;
-        self.update_matrix();
-        Ok(norms)
+        self.evaluate_with(x, lambda, r, false, true)
     }
 
     fn matrix(&self) -> &SparseMatrix {

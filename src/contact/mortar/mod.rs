@@ -50,7 +50,7 @@ use friction::Branch;
 use linearisation::linear_tangent;
 use segments::CellTerms;
 use std::collections::HashMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 /// The matrix pattern holds the couplings of the master cells within this many cell
 /// sizes of each slave cell (the pairing itself uses one), so that a contact zone growing
@@ -80,6 +80,8 @@ pub struct Mortar {
     /// `contribute` last sent (usize::MAX: none yet).
     pattern_generation: usize,
     pattern_sent: AtomicUsize,
+    /// Whether `contribute` writes the tangent (see `ContactPair::set_tangent_wanted`).
+    tangent_wanted: AtomicBool,
     /// The candidates at the start of the load step (restored when it is cut).
     saved_candidates: Vec<Vec<usize>>,
     active: Vec<bool>,
@@ -211,6 +213,7 @@ impl Mortar {
             pattern_candidates,
             pattern_generation: 0,
             pattern_sent: AtomicUsize::new(usize::MAX),
+            tangent_wanted: AtomicBool::new(true),
             candidates,
             active: vec![],
             saved: vec![],
@@ -424,6 +427,10 @@ impl ContactPair for Mortar {
                 }
             }
         }
+        // (a residual alone: no tangent, no linearisation, no pattern)
+        if !self.tangent_wanted.load(Ordering::Relaxed) {
+            return;
+        }
         if self.small {
             linear_tangent(&terms, self.c, &active, &d, &law, ndof + mult_base, nm, k);
         } else {
@@ -538,6 +545,10 @@ impl ContactPair for Mortar {
 
     fn changed_nodes(&self) -> Vec<usize> {
         self.changed.clone()
+    }
+
+    fn set_tangent_wanted(&self, wanted: bool) {
+        self.tangent_wanted.store(wanted, Ordering::Relaxed);
     }
 
     fn open_at_rest(&mut self, mesh: &Mesh) -> bool {
