@@ -17,6 +17,7 @@
 // Index loops mirror the formulas (sums over nodes, components, Gauss points).
 #![allow(clippy::needless_range_loop)]
 
+pub mod alloc_cap;
 pub mod assembly;
 pub mod case;
 pub mod cli;

@@ -1,5 +1,10 @@
 //! The `tribo` command: parses arguments, runs, prints the error chain, sets the exit code.
 
+/// Allocations past 90 % of the memory available at the start fail inside the process
+/// (see `alloc_cap`), before the kernel's OOM killer ends it without a word.
+#[global_allocator]
+static ALLOCATOR: tribo::alloc_cap::Capped = tribo::alloc_cap::Capped;
+
 fn main() {
     // A closed or full standard output (`| head`, `> /dev/full`) makes `println!` panic:
     // end quietly with a non-zero status instead, and only that; any other panic is a bug
@@ -18,6 +23,9 @@ fn main() {
         default_hook(info);
     }));
     tribo::cli::keep_freed_memory();
+    if let Some((bytes, _)) = tribo::memory::available() {
+        tribo::alloc_cap::cap_from_now(bytes / 10 * 9);
+    }
     // before any thread starts (they inherit its signal mask)
     tribo::cli::run::signals::install();
     match tribo::cli::on_worker_thread(tribo::cli::main) {
