@@ -6,6 +6,7 @@
 //! | `interface.rs` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
 //! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
 //! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
+//! | `line_search.rs` | backtracking on the residual with each trial point's contact statuses |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
 //! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
@@ -14,6 +15,7 @@ pub mod gmres;
 pub mod history;
 pub mod interface;
 pub mod ldlt;
+pub mod line_search;
 pub mod linear;
 pub mod newton;
 pub mod problem;

@@ -5,6 +5,7 @@
 //! extrapolation of the previous one when that lowers the starting residual. Every
 //! iteration is recorded for the report.
 
+use super::line_search;
 use super::linear::{LinearSolver, Method};
 use super::problem::Norms;
 use crate::assembly::matrix::SparseMatrix;
@@ -156,6 +157,9 @@ pub struct Iteration {
     /// This iteration's tangent kept the bodies' part (and their factorisations) of an
     /// earlier iterate; its contact terms are those of this point.
     pub frozen_bodies: bool,
+    /// The fraction of the last correction kept by the line search, when it shortened it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub step_length: Option<f64>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -437,6 +441,8 @@ pub fn solve_into(
         let mut newton_its = 0;
         // how often each node's contact status changed in this attempt (failure messages)
         let mut status_counts = std::collections::BTreeMap::<usize, usize>::new();
+        // the merits of this step's Newton points, for the line search
+        let mut merits = line_search::Merits::default();
         // (at rest with nothing loading the bodies: that is the step's solution)
         let rest = rest_solution(problem, &x, lambda, &mut r, &meets_tolerance)?;
         for it in 0.. {
@@ -448,6 +454,7 @@ pub fn solve_into(
                     active_set_resolve: false,
                     chord: false,
                     frozen_bodies: false,
+                    step_length: None,
                 });
                 step.converged = true;
                 break;
@@ -501,7 +508,7 @@ pub fn solve_into(
             // of each load step). Not with friction: its stick/slip switches make the
             // prediction poor, and a chord step ends at the tolerance where the last Newton
             // correction goes far below it, and with it the Coulomb condition |t| ≤ μ p.
-            let chord = settings.chord_steps
+            let mut chord = settings.chord_steps
                 && !backtracking
                 && lin.factorisation_is_exact()
                 && !resolve
@@ -528,8 +535,40 @@ pub fn solve_into(
                     norms = problem.evaluate(&x, lambda, &mut r, true)?;
                 }
             }
+            // Line search (line_search.rs): a correction whose point is worse than the
+            // step's last few Newton points is shortened, each trial point with its own
+            // statuses. (Not where the friction backtracking above already applies.)
+            let mut step_length = None;
+            if let (Some(dx), Some(reference), false) = (&last_dx, merits.reference(), resolve) {
+                let friction_handled = backtracking && changes == 0;
+                // (not after an active-set re-solve: its correction meets its linearised
+                // complementarity with the new statuses, shortening it leaves them, and
+                // point-to-segment and node-to-segment then took up to 1.5× the iterations:
+                // SSNP154 A and E in 4 steps at size 0.2)
+                let after_resolve = problem.active_set_resolves()
+                    && step.iterations.last().is_some_and(|i| i.active_set_resolve);
+                if !friction_handled
+                    && !after_resolve
+                    && !meets_tolerance(&norms)
+                    && norms.relative() > reference
+                {
+                    let full = norms.relative();
+                    if let Some((s, _)) = line_search::backtrack(
+                        problem, &mut x, dx, lambda, &mut r, full, reference,
+                    )? {
+                        // the kept point's tangent (its residual as the search left it)
+                        norms = problem.evaluate(&x, lambda, &mut r, true)?;
+                        frozen = false;
+                        chord = false;
+                        step_length = Some(s.alpha);
+                    }
+                }
+            }
             report.time_evaluate_s += t.elapsed().as_secs_f64();
             let rel = norms.relative();
+            if !resolve {
+                merits.push(rel);
+            }
             step.iterations.push(Iteration {
                 iteration: it,
                 relative_residual: rel,
@@ -537,6 +576,7 @@ pub fn solve_into(
                 active_set_resolve: resolve,
                 chord,
                 frozen_bodies: frozen,
+                step_length,
             });
             if settings.verbose {
                 let note = if resolve {
@@ -548,7 +588,10 @@ pub fn solve_into(
                 } else {
                     ""
                 };
-                eprintln!("  step t={lambda:.4} iter {it:2}  residual {rel:.3e}{note}");
+                let searched = step_length.map_or(String::new(), |a| {
+                    format!("  (line search: {a} of the correction)")
+                });
+                eprintln!("  step t={lambda:.4} iter {it:2}  residual {rel:.3e}{note}{searched}");
             }
             if !rel.is_finite() {
                 failure = Some("non-finite residual".to_string());
@@ -578,6 +621,16 @@ pub fn solve_into(
             if !resolve && residuals.len() > 3 && rel > 1e3 * best && rel >= recent {
                 let why = diagnosis(problem, &r, &status_counts);
                 failure = Some(format!("divergence (residual {rel:.1e}){why}"));
+                break;
+            }
+            // Stalled: line searches have been shortening corrections and the last Newton
+            // points do not improve on the step's best; a smaller step will do better.
+            if step_length.is_some() && merits.stalled(line_search::STALL) {
+                let why = diagnosis(problem, &r, &status_counts);
+                failure = Some(format!(
+                    "no progress in {} iterations with line searches (residual {rel:.1e}){why}",
+                    line_search::STALL
+                ));
                 break;
             }
             // Converged: residual below the tolerance, or (with no load to measure it

@@ -1,0 +1,125 @@
+//! Backtracking line search for semi-smooth Newton on contact.
+//!
+//! The merit is the convergence measure itself, the relative residual, taken at each trial
+//! point with the contact statuses of that point: that is the residual of the nonsmooth
+//! equations (complementarity in max-form), so a Newton direction lowers it near a solution
+//! and the test does not depend on which statuses the correction was computed with.
+//! The acceptance test is non-monotone (Grippo, Lampariello and Lucidi 1986): a point is
+//! compared with the largest merit of the step's last few Newton points, so that the
+//! residual of a contact zone growing from a first touch, which rises and falls while the
+//! statuses settle, is not cut back; only a correction that makes things worse than all of
+//! them is. Halving stops at 1/16: below that the direction is poor, and the step is cut by
+//! the load stepping instead (the last resort).
+
+use super::newton::Nonlinear;
+use super::problem::Norms;
+use crate::error::Result;
+
+/// Newton points in a row that do not lower the step's best merit, line searches having
+/// shortened corrections, before the step is given up (cut).
+pub const STALL: usize = 8;
+/// How many of the step's last Newton merits the acceptance test compares with.
+pub const MEMORY: usize = 3;
+/// Sufficient decrease (Armijo) on the merit.
+const ARMIJO: f64 = 1e-4;
+/// Halvings of the correction tried before giving up.
+const HALVINGS: u32 = 4;
+
+/// The merits of a load step's Newton points (not re-solves or trial points).
+#[derive(Default)]
+pub struct Merits(Vec<f64>);
+
+impl Merits {
+    pub fn push(&mut self, m: f64) {
+        self.0.push(m);
+    }
+
+    /// Whether the last `n` merits have not lowered the best one before them: Newton is
+    /// stuck (with line searches shortening its corrections, not going to get out of it).
+    pub fn stalled(&self, n: usize) -> bool {
+        let k = self.0.len();
+        k > n && {
+            let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+            min(&self.0[k - n..]) >= min(&self.0[..k - n])
+        }
+    }
+
+    /// The non-monotone reference: the largest of the last `MEMORY` merits.
+    pub fn reference(&self) -> Option<f64> {
+        let n = self.0.len();
+        (n > 0).then(|| {
+            self.0[n.saturating_sub(MEMORY)..]
+                .iter()
+                .copied()
+                .fold(0.0, f64::max)
+        })
+    }
+}
+
+/// What a line search did.
+pub struct Searched {
+    /// The fraction of the correction kept.
+    pub alpha: f64,
+    /// Status changes at the chosen point against the statuses of the full correction's.
+    pub changes: usize,
+}
+
+/// The full correction x0 + dx (the current x, evaluated: `full`) raised the merit above
+/// `reference`: tries x0 + α dx for α = 1/2, 1/4, …, each with its own statuses, and keeps
+/// the first that decreases the merit enough, or the best point tried when none does (the
+/// full one included). The problem is left at the kept point, its statuses updated and the
+/// residual r evaluated there (without tangent); returns None when the full step stays.
+pub fn backtrack(
+    problem: &mut dyn Nonlinear,
+    x: &mut [f64],
+    dx: &[f64],
+    lambda: f64,
+    r: &mut [f64],
+    full: f64,
+    reference: f64,
+) -> Result<Option<(Searched, Norms)>> {
+    let mut best = (1.0, full);
+    let mut alpha = 1.0;
+    let mut trial = x.to_vec();
+    let mut accepted = None;
+    for _ in 0..HALVINGS {
+        let next = 0.5 * alpha;
+        // x0 + next dx from x0 + alpha dx
+        for (t, d) in trial.iter_mut().zip(dx) {
+            *t -= (alpha - next) * d;
+        }
+        alpha = next;
+        let changes = problem.update_status(&trial, lambda)?;
+        let norms = problem.evaluate(&trial, lambda, r, false)?;
+        let m = norms.relative();
+        if !m.is_finite() {
+            continue;
+        }
+        if m <= (1.0 - ARMIJO * alpha) * reference {
+            accepted = Some((alpha, changes, norms));
+            break;
+        }
+        if m < best.1 {
+            best = (alpha, m);
+        }
+    }
+    let (alpha, changes, norms) = match accepted {
+        Some(a) => a,
+        None if best.0 == 1.0 => {
+            // back to the full correction and its statuses
+            problem.update_status(x, lambda)?;
+            problem.evaluate(x, lambda, r, false)?;
+            return Ok(None);
+        }
+        None => {
+            let a = best.0;
+            for (t, (xi, d)) in trial.iter_mut().zip(x.iter().zip(dx)) {
+                *t = xi - (1.0 - a) * d;
+            }
+            let changes = problem.update_status(&trial, lambda)?;
+            (a, changes, problem.evaluate(&trial, lambda, r, false)?)
+        }
+    };
+    x.copy_from_slice(&trial);
+    Ok(Some((Searched { alpha, changes }, norms)))
+}
