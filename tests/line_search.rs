@@ -36,9 +36,6 @@ impl Nonlinear for Arctan {
     fn matrix(&self) -> &SparseMatrix {
         &self.k
     }
-    fn length_scale(&self) -> f64 {
-        1.0
-    }
 }
 
 #[test]

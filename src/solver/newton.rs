@@ -634,11 +634,13 @@ pub fn solve_into(
                 break;
             }
             // Converged: residual below the tolerance, or (with no load to measure it
-            // against, e.g. a pure rigid motion) a correction at round-off size.
+            // against, e.g. a pure rigid motion) a correction at round-off size (of a
+            // problem that knows its size: without one, every correction would do).
             if it > 0
                 && changes == 0
                 && (meets_tolerance(&norms)
-                    || (last_size <= 1e-10 * problem.length_scale()
+                    || (problem.length_scale().is_finite()
+                        && last_size <= 1e-10 * problem.length_scale()
                         && norms.constraint <= settings.tolerance))
             {
                 if let Some(defect) = problem.state_defect() {
