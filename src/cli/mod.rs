@@ -24,6 +24,9 @@ use std::path::PathBuf;
     about = "Finite-element solver for frictional contact between elastic bodies (2D)"
 )]
 struct Cli {
+    /// Print nothing but errors (no results on stdout, no status line).
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -36,7 +39,7 @@ enum Command {
         /// Output folder (default: next to the case file, named after it).
         #[arg(short, long)]
         output: Option<PathBuf>,
-        /// Print every Newton iteration.
+        /// Print every load step ("load step k of N") and Newton iteration on stderr.
         #[arg(short, long)]
         verbose: bool,
     },
@@ -172,12 +175,22 @@ pub fn on_worker_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
 /// Runs the command line; returns the process exit code.
 pub fn main() -> Result<i32> {
     let cli = Cli::parse();
+    crate::progress::set_quiet(cli.quiet);
+    // (the status line stands in for verbose output: not both)
+    let _display = match &cli.command {
+        Command::Run { verbose: true, .. } | Command::Validate { verbose: true, .. } => None,
+        Command::Run { .. } | Command::Validate { .. } | Command::Study { .. } => {
+            Some(crate::progress::start())
+        }
+        Command::Mesh { .. } => None,
+    };
+    let quiet = cli.quiet;
     match cli.command {
         Command::Run {
             case,
             output,
             verbose,
-        } => run::run(&case, output.as_deref(), verbose),
+        } => run::run(&case, output.as_deref(), verbose && !quiet),
         Command::Mesh {
             command: MeshCommand::Info { file, json },
         } => mesh::info(&file, json),
@@ -214,7 +227,7 @@ pub fn main() -> Result<i32> {
             formulation.as_deref(),
             mesh_format.as_deref(),
             report.as_deref(),
-            verbose,
+            verbose && !quiet,
         ),
         Command::Study {
             command:
