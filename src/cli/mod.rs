@@ -6,11 +6,14 @@
 //! | `mesh.rs` | `tribo mesh info`, `mesh convert`, `mesh compare` |
 //! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
 //! | `report.rs` | `tribo validate --report DIR`: report.html with inline SVG plots |
+//! | `study.rs` | `tribo study hertz`: SSNP154 refined against Hertz |
+//! | `study_refine.rs` | `tribo study refine CASE`: refinement study of any case, Richardson |
 
 mod mesh;
 pub mod report;
 pub mod run;
 pub mod study;
+pub mod study_refine;
 pub mod validate;
 
 use crate::error::Result;
@@ -78,6 +81,19 @@ enum Command {
 
 #[derive(Subcommand)]
 enum StudyCommand {
+    /// Refinement study of any case: the element size halved per level (a generator's size
+    /// or cell counts; a mesh file's cells split 2^k x 2^k); per level every probe and per
+    /// contact pair its resultants; observed order, Richardson extrapolation and its error.
+    Refine {
+        case: PathBuf,
+        /// Number of levels (at least 3; a mesh file: at most 5).
+        #[arg(long, default_value_t = 3)]
+        levels: usize,
+        /// Write DIR/refine.json, refine.csv, refine.html and a plot (SVG + CSV) per
+        /// quantity (also shown by `validate --report DIR`).
+        #[arg(long)]
+        report: Option<PathBuf>,
+    },
     /// SSNP154 on built-in meshes refined level by level, against the Hertz solution.
     Hertz {
         /// Number of levels (element size at the contact 3 mm, halved at each level).
@@ -229,6 +245,14 @@ pub fn main() -> Result<i32> {
             report.as_deref(),
             verbose && !quiet,
         ),
+        Command::Study {
+            command:
+                StudyCommand::Refine {
+                    case,
+                    levels,
+                    report,
+                },
+        } => study_refine::refine(&case, levels, report.as_deref()),
         Command::Study {
             command:
                 StudyCommand::Hertz {

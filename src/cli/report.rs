@@ -3,7 +3,8 @@
 //! (multipliers and extrapolated stresses), the shear against μ·p with the stick and slip
 //! zones, the deformed contact region coloured by von Mises, and the Newton history; the
 //! refinement study of `DIR/study.json` (`tribo study hertz --report DIR`; `validate --report`
-//! runs a short one when there is none), or a note saying how to add it. Every
+//! runs a short one when there is none), or a note saying how to add it, and that of
+//! `DIR/refine.json` (`tribo study refine CASE --report DIR`) when there is one. Every
 //! plot is also a standalone SVG beside the page, with the plotted data as CSV.
 
 use crate::case::{schema::CaseFile, Outcome};
@@ -434,20 +435,44 @@ fn study_section(dir: &Path) -> Result<String> {
     Ok(html)
 }
 
-pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<()> {
-    std::fs::create_dir_all(dir).map_err(|e| crate::error::Error::io(dir, e))?;
-    let mut html = String::new();
-    let _ = writeln!(
-        html,
+/// The head of a report page (its style: text wraps, pictures shrink to the page width).
+fn head(title: &str) -> String {
+    format!(
         "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <title>tribo: SSNP154 validation</title><style>\
+         <title>{}</title><style>\
          body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}}\
          table{{border-collapse:collapse}}td,th{{border:1px solid #bbb;padding:3px 8px;text-align:right}}\
          td.l,th.l{{text-align:left}}.pass{{color:#1a7f1a}}.fail{{color:#c00;font-weight:bold}}\
          figure{{margin:1em 0}}svg{{max-width:100%;height:auto}}\
-         pre{{white-space:pre-wrap;overflow-wrap:anywhere}}code{{overflow-wrap:anywhere}}\
-         .missing{{background:#fff6d5;padding:6px}}</style></head><body>"
-    );
+         pre{{white-space:pre-wrap;overflow-wrap:anywhere}}code,td.l{{overflow-wrap:anywhere}}\
+         .missing{{background:#fff6d5;padding:6px}}</style></head><body>\n",
+        escape(title)
+    )
+}
+
+/// A standalone page holding `body` (HTML).
+pub fn page(title: &str, body: &str) -> String {
+    format!(
+        "{}<h1>{}</h1>\n{body}</body></html>\n",
+        head(title),
+        escape(title)
+    )
+}
+
+/// The section of a `tribo study refine --report DIR` run into the same folder, if any.
+fn refine_section(dir: &Path) -> Result<Option<String>> {
+    let Ok(text) = std::fs::read_to_string(dir.join("refine.json")) else {
+        return Ok(None);
+    };
+    let doc: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
+        crate::error::Error::parse(dir.join("refine.json").display().to_string(), e.to_string())
+    })?;
+    super::study_refine::section(dir, &doc).map(Some)
+}
+
+pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| crate::error::Error::io(dir, e))?;
+    let mut html = head("tribo: SSNP154 validation");
     let all_pass = rows.iter().all(|r| r.checks.iter().all(|c| c.pass));
     let _ = writeln!(
         html,
@@ -494,6 +519,9 @@ pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<(
         row_section(dir, r, &mut html)?;
     }
     html.push_str(&study_section(dir)?);
+    if let Some(s) = refine_section(dir)? {
+        html.push_str(&s);
+    }
     let _ = writeln!(
         html,
         "<section><h2>Versions and settings</h2><pre>{}</pre></section></body></html>",
