@@ -36,7 +36,8 @@ pub fn richardson(values: &[f64]) -> Option<Richardson> {
         return None;
     };
     let (d1, d2) = (f2 - f1, f3 - f2);
-    if !(d1 * d2 > 0.0) {
+    // (NaN compares as no order)
+    if (d1 * d2).partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater) {
         return None;
     }
     let order = (d1 / d2).log2();
