@@ -408,8 +408,8 @@ fn study_section(dir: &Path) -> Result<String> {
         return Ok(format!(
             "<section><h2>Refinement study against Hertz</h2><p class=\"missing\">Not in this \
              report: no refinement study was run into this folder. To add it, run \
-             <code>tribo study hertz --levels 3 --kinematics small --report {0}</code> (about \
-             ten seconds), then <code>tribo validate --report {0}</code> again.</p></section>",
+             <code>tribo study hertz --levels 3 --kinematics small --report {0}</code> (under a \
+             second), then <code>tribo validate --report {0}</code> again.</p></section>",
             escape(&dir.display().to_string())
         ));
     };
