@@ -60,7 +60,7 @@ pub fn start() -> Display {
     }
     let bar = ProgressBar::with_draw_target(None, ProgressDrawTarget::stderr());
     bar.set_style(
-        ProgressStyle::with_template("{spinner} {elapsed:>4} {prefix}{wide_msg}")
+        ProgressStyle::with_template("{spinner} {elapsed:>4} {prefix}{msg}")
             .unwrap_or_else(|_| ProgressStyle::default_spinner()),
     );
     bar.enable_steady_tick(Duration::from_millis(200));
