@@ -25,6 +25,10 @@ chromium $FLAGS --enable-logging=stderr --v=0 --window-size=1200,9000 \
   cat "$OUT/chromium.log"; exit 1; }
 # shellcheck disable=SC2086
 chromium $FLAGS --dump-dom "file://$PWD/$OUT/report.html" > "$OUT/dom.html" 2>> "$OUT/chromium.log"
+# Layout at 1280 px: a copy of the page with .ci/layout_check.js at its end measures what
+# the browser laid out (horizontal scroll, boxes overflowing, SVG text cut by its picture
+# or drawn over other text, markers under a legend, over-long numbers) into the DOM.
+bash .ci/check_layout.sh "$OUT/report.html" "$OUT" 2>> "$OUT/chromium.log"
 if grep -E "CONSOLE|Uncaught|Failed to load" "$OUT/chromium.log"; then
   echo "FAILED: the browser reported errors"; exit 1
 fi
@@ -34,7 +38,8 @@ from PIL import Image
 out = sys.argv[1]
 dom = open(f"{out}/dom.html").read()
 need = ["<table>", "contact pressure", "shear traction", "deformed contact region",
-        "Newton convergence", "Refinement study", "Versions and settings"]
+        "Newton convergence", "Refinement study", "refinement: mortar quadratic small",
+        "Versions and settings"]
 missing = [n for n in need if n not in dom]
 if missing:
     print("FAILED: the rendered page lacks", missing); sys.exit(1)

@@ -11,6 +11,7 @@
 //! | `post` | stresses at nodes, VTU output |
 //! | `case` | TOML case files, built-in SSNP154 cases |
 //! | `cli` | the `tribo` command |
+//! | `progress` | the status line of long work on a terminal, `--quiet` |
 //! | `fem` | shape functions, quadrature, materials, element kernels |
 //! | `expr` | values given as expressions of x, y and t (compiled once, errors placed) |
 
@@ -28,6 +29,7 @@ pub mod fem;
 pub mod memory;
 pub mod mesh;
 pub mod post;
+pub mod progress;
 pub mod solver;
 
 pub use error::{Error, Result};

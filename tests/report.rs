@@ -59,14 +59,10 @@ fn report_plots_are_the_computed_data() {
         let series = read_back(&svg);
         assert!(!series.is_empty(), "{plot}: no series");
         for (label, pts) in &series {
-            let rows: Vec<(f64, f64)> = csv
-                .lines()
-                .skip(1)
-                .filter(|l| l.starts_with(&format!("{label},")))
-                .map(|l| {
-                    let f: Vec<&str> = l.rsplitn(3, ',').collect();
-                    (f[1].parse().unwrap(), f[0].parse().unwrap())
-                })
+            let rows: Vec<(f64, f64)> = csv_rows(&csv)
+                .into_iter()
+                .filter(|r| r.0 == *label)
+                .map(|r| (r.1, r.2))
                 .collect();
             assert_eq!(rows.len(), pts.len(), "{plot} '{label}': point counts");
             let log_y = plot == "C_newton";
@@ -94,14 +90,54 @@ fn report_plots_are_the_computed_data() {
         }
     }
     let csv = std::fs::read_to_string(dir.join("C_pressure.csv")).unwrap();
-    let plotted: Vec<(f64, f64)> = csv
-        .lines()
-        .filter(|l| l.starts_with("multipliers,"))
-        .map(|l| {
-            let f: Vec<&str> = l.split(',').collect();
-            (f[1].parse().unwrap(), f[2].parse().unwrap())
-        })
+    let plotted: Vec<(f64, f64)> = csv_rows(&csv)
+        .into_iter()
+        .filter(|r| r.0 == "multipliers")
+        .map(|r| (r.1, r.2))
         .collect();
+    // a label with a comma is one quoted field
+    assert!(csv_rows(&csv)
+        .iter()
+        .any(|r| r.0 == "stresses, slave (-n.sigma.n)"));
+    // the Newton plot joins the iterations of each load step by a line
+    let newton = std::fs::read_to_string(dir.join("C_newton.svg")).unwrap();
+    let steps = newton.matches("class=\"series\"").count();
+    assert!(steps >= 2, "{steps} load steps");
+    assert_eq!(newton.matches("<polyline").count(), steps);
+    // the legend lies below the plot box: no entry over the data
+    for plot in ["C_pressure", "C_shear", "C_newton"] {
+        let svg = std::fs::read_to_string(dir.join(format!("{plot}.svg"))).unwrap();
+        let root = &svg[..svg.find('>').unwrap()];
+        let bx: Vec<f64> = root
+            .split("data-box=\"")
+            .nth(1)
+            .unwrap()
+            .split('"')
+            .next()
+            .unwrap()
+            .split(' ')
+            .map(|v| v.parse().unwrap())
+            .collect();
+        let bottom = bx[1] + bx[3];
+        let legend = &svg[svg.find("<g class=\"legend\">").unwrap()..];
+        for y in legend.split(" y=\"").skip(1) {
+            let y: f64 = y.split('"').next().unwrap().parse().unwrap();
+            assert!(
+                y > bottom + 20.0,
+                "{plot}: legend at y = {y}, plot box to {bottom}"
+            );
+        }
+    }
+    // numbers in the page are rounded (no 0.7582325275954309)
+    let mut text = String::new();
+    for piece in html.split('<') {
+        text.push_str(piece.split_once('>').map_or(piece, |p| p.1));
+        text.push(' ');
+    }
+    let long = text
+        .split(|c: char| !(c.is_ascii_digit() || c == '.'))
+        .find(|w| w.split_once('.').is_some_and(|(_, d)| d.len() >= 7));
+    assert_eq!(long, None, "an unrounded number in the text of report.html");
     assert_eq!(
         plotted, expected,
         "the CSV holds the solver's multiplier pressures"
@@ -116,4 +152,19 @@ fn report_plots_are_the_computed_data() {
         "no slip zone drawn"
     );
     let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// (series, x, y) rows of a plot's CSV, read by an RFC 4180 reader.
+fn csv_rows(text: &str) -> Vec<(String, f64, f64)> {
+    csv::Reader::from_reader(text.as_bytes())
+        .records()
+        .map(|r| {
+            let r = r.unwrap();
+            (
+                r[0].to_string(),
+                r[1].parse().unwrap(),
+                r[2].parse().unwrap(),
+            )
+        })
+        .collect()
 }

@@ -38,33 +38,40 @@ pub fn info(path: &Path, as_json: bool) -> Result<i32> {
             "bounding_box": {"min": lo, "max": hi},
             "quality": q,
         });
-        println!("{}", serde_json::to_string_pretty(&out).unwrap());
+        crate::say!("{}", serde_json::to_string_pretty(&out).unwrap());
         return Ok(0);
     }
-    println!("{}", path.display());
-    println!("  nodes        {}", mesh.num_nodes());
+    crate::say!("{}", path.display());
+    crate::say!("  nodes        {}", mesh.num_nodes());
     for (k, v) in &counts {
-        println!("  {:<12} {}", k.name(), v);
+        crate::say!("  {:<12} {}", k.name(), v);
     }
-    println!(
+    crate::say!(
         "  bounding box [{:.6}, {:.6}] x [{:.6}, {:.6}]",
-        lo[0], hi[0], lo[1], hi[1]
+        lo[0],
+        hi[0],
+        lo[1],
+        hi[1]
     );
-    println!(
+    crate::say!(
         "  reoriented   {} cells (given clockwise, reordered counter-clockwise)",
         mesh.reoriented
     );
     if let Some(q) = q {
-        println!(
+        crate::say!(
             "  quality      min angle {:.1} deg, max aspect ratio {:.2}",
-            q.min_angle_deg, q.max_aspect_ratio
+            q.min_angle_deg,
+            q.max_aspect_ratio
         );
     }
-    println!("  groups:");
+    crate::say!("  groups:");
     for (name, g) in &groups {
-        println!(
+        crate::say!(
             "    {:<16} dim {}  cells {:>6}  nodes {:>6}",
-            name, g["dim"], g["cells"], g["nodes"]
+            name,
+            g["dim"],
+            g["cells"],
+            g["nodes"]
         );
     }
     Ok(0)
@@ -125,7 +132,7 @@ fn write(input: &Path, output: &Path, fmt: &str, mesh: &crate::mesh::Mesh) -> Re
         _ => crate::post::vtu::write_mesh(output, mesh)?,
     }
     let groups = mesh.group_names().len();
-    println!(
+    crate::say!(
         "{} -> {} ({fmt}): {} nodes, {} cells, {groups} groups",
         input.display(),
         output.display(),
@@ -136,7 +143,7 @@ fn write(input: &Path, output: &Path, fmt: &str, mesh: &crate::mesh::Mesh) -> Re
         && (0..mesh.num_cells())
             .any(|c| mesh.kind(c).dim() == 2 && !mesh.cell_groups.values().any(|g| g.contains(&c)))
     {
-        println!(
+        crate::say!(
             "note: 2D cells in no group were put in the group '{}' (Gmsh drops ungrouped cells)",
             crate::mesh::gmsh_write::UNGROUPED
         );
@@ -156,20 +163,20 @@ pub fn compare(a: &Path, b: &Path, tol: f64) -> Result<i32> {
             .collect::<Vec<_>>()
             .join(", ")
     };
-    println!("{}: {} nodes; {}", a.display(), ma.num_nodes(), counts(&ma));
-    println!("{}: {} nodes; {}", b.display(), mb.num_nodes(), counts(&mb));
-    println!("groups: {}", ma.group_names().join(", "));
-    println!(
+    crate::say!("{}: {} nodes; {}", a.display(), ma.num_nodes(), counts(&ma));
+    crate::say!("{}: {} nodes; {}", b.display(), mb.num_nodes(), counts(&mb));
+    crate::say!("groups: {}", ma.group_names().join(", "));
+    crate::say!(
         "largest node distance {:.3e} (tolerance {tol:e} of the bounding-box diagonal), numbering {}",
         c.max_node_distance,
         if c.same_numbering { "identical" } else { "different" }
     );
     if c.differences.is_empty() {
-        println!("same mesh");
+        crate::say!("same mesh");
         Ok(0)
     } else {
         for d in &c.differences {
-            println!("DIFFERENT: {d}");
+            crate::say!("DIFFERENT: {d}");
         }
         Ok(1)
     }

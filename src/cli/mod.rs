@@ -6,11 +6,14 @@
 //! | `mesh.rs` | `tribo mesh info`, `mesh convert`, `mesh compare` |
 //! | `validate.rs` | `tribo validate`: the SSNP154 stages on built-in or given meshes |
 //! | `report.rs` | `tribo validate --report DIR`: report.html with inline SVG plots |
+//! | `study.rs` | `tribo study hertz`: SSNP154 refined against Hertz |
+//! | `study_refine.rs` | `tribo study refine CASE`: refinement study of any case, Richardson |
 
 mod mesh;
 pub mod report;
 pub mod run;
 pub mod study;
+pub mod study_refine;
 pub mod validate;
 
 use crate::error::Result;
@@ -24,6 +27,9 @@ use std::path::PathBuf;
     about = "Finite-element solver for frictional contact between elastic bodies (2D)"
 )]
 struct Cli {
+    /// Print nothing but errors (no results on stdout, no status line).
+    #[arg(short, long, global = true)]
+    quiet: bool,
     #[command(subcommand)]
     command: Command,
 }
@@ -36,7 +42,7 @@ enum Command {
         /// Output folder (default: next to the case file, named after it).
         #[arg(short, long)]
         output: Option<PathBuf>,
-        /// Print every Newton iteration.
+        /// Print every load step ("load step k of N") and Newton iteration on stderr.
         #[arg(short, long)]
         verbose: bool,
     },
@@ -75,6 +81,19 @@ enum Command {
 
 #[derive(Subcommand)]
 enum StudyCommand {
+    /// Refinement study of any case: the element size halved per level (a generator's size
+    /// or cell counts; a mesh file's cells split 2^k x 2^k); per level every probe and per
+    /// contact pair its resultants; observed order, Richardson extrapolation and its error.
+    Refine {
+        case: PathBuf,
+        /// Number of levels (at least 3; a mesh file: at most 5).
+        #[arg(long, default_value_t = 3)]
+        levels: usize,
+        /// Write DIR/refine.json, refine.csv, refine.html and a plot (SVG + CSV) per
+        /// quantity (also shown by `validate --report DIR`).
+        #[arg(long)]
+        report: Option<PathBuf>,
+    },
     /// SSNP154 on built-in meshes refined level by level, against the Hertz solution.
     Hertz {
         /// Number of levels (element size at the contact 3 mm, halved at each level).
@@ -172,12 +191,22 @@ pub fn on_worker_thread<T: Send>(work: impl FnOnce() -> T + Send) -> T {
 /// Runs the command line; returns the process exit code.
 pub fn main() -> Result<i32> {
     let cli = Cli::parse();
+    crate::progress::set_quiet(cli.quiet);
+    // (the status line stands in for verbose output: not both)
+    let _display = match &cli.command {
+        Command::Run { verbose: true, .. } | Command::Validate { verbose: true, .. } => None,
+        Command::Run { .. } | Command::Validate { .. } | Command::Study { .. } => {
+            Some(crate::progress::start())
+        }
+        Command::Mesh { .. } => None,
+    };
+    let quiet = cli.quiet;
     match cli.command {
         Command::Run {
             case,
             output,
             verbose,
-        } => run::run(&case, output.as_deref(), verbose),
+        } => run::run(&case, output.as_deref(), verbose && !quiet),
         Command::Mesh {
             command: MeshCommand::Info { file, json },
         } => mesh::info(&file, json),
@@ -214,8 +243,16 @@ pub fn main() -> Result<i32> {
             formulation.as_deref(),
             mesh_format.as_deref(),
             report.as_deref(),
-            verbose,
+            verbose && !quiet,
         ),
+        Command::Study {
+            command:
+                StudyCommand::Refine {
+                    case,
+                    levels,
+                    report,
+                },
+        } => study_refine::refine(&case, levels, report.as_deref()),
         Command::Study {
             command:
                 StudyCommand::Hertz {

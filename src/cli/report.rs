@@ -2,7 +2,9 @@
 //! with the validation table, and per modelisation the contact pressure against Hertz
 //! (multipliers and extrapolated stresses), the shear against μ·p with the stick and slip
 //! zones, the deformed contact region coloured by von Mises, and the Newton history; the
-//! refinement study when `DIR/study.json` exists (`tribo study hertz --report DIR`). Every
+//! refinement study of `DIR/study.json` (`tribo study hertz --report DIR`; `validate --report`
+//! runs a short one when there is none), or a note saying how to add it, and that of
+//! `DIR/refine.json` (`tribo study refine CASE --report DIR`) when there is one. Every
 //! plot is also a standalone SVG beside the page, with the plotted data as CSV.
 
 use crate::case::{schema::CaseFile, Outcome};
@@ -12,7 +14,7 @@ use crate::mesh::Mesh;
 use crate::post::contact_picture::{self, Picture};
 use crate::post::contact_pressure::surface_tractions;
 use crate::post::contact_state::{statuses, SLIP, STICK};
-use crate::post::plot::{self, escape, Band, Options, Series};
+use crate::post::plot::{self, escape, sig, Band, Options, Series, Style};
 use std::fmt::Write;
 use std::path::Path;
 
@@ -42,15 +44,23 @@ pub struct Row {
 }
 
 /// Writes a plot as DIR/NAME.svg and its data as DIR/NAME.csv (series,x,y); returns the SVG.
-fn plot_files(dir: &Path, name: &str, svg: String, series: &[Series]) -> Result<String> {
+/// The CSV goes through the `csv` crate: labels hold commas ("stresses, slave"), which it
+/// quotes as RFC 4180 readers expect.
+pub fn plot_files(dir: &Path, name: &str, svg: String, series: &[Series]) -> Result<String> {
     write_atomic(&dir.join(format!("{name}.svg")), svg.as_bytes())?;
-    let mut csv = String::from("series,x,y\n");
+    let mut w = csv::Writer::from_writer(vec![]);
+    let csv_error = |e: csv::Error| crate::error::Error::model(format!("{name}.csv: {e}"));
+    w.write_record(["series", "x", "y"]).map_err(csv_error)?;
     for s in series {
         for &(x, y) in s.points {
-            let _ = writeln!(csv, "{},{x},{y}", s.label);
+            w.write_record([s.label, &x.to_string(), &y.to_string()])
+                .map_err(csv_error)?;
         }
     }
-    write_atomic(&dir.join(format!("{name}.csv")), csv.as_bytes())?;
+    let bytes = w
+        .into_inner()
+        .map_err(|e| crate::error::Error::model(format!("{name}.csv: {e}")))?;
+    write_atomic(&dir.join(format!("{name}.csv")), &bytes)?;
     Ok(svg)
 }
 
@@ -120,25 +130,25 @@ fn row_section(dir: &Path, row: &Row, html: &mut String) -> Result<()> {
             label: "Hertz",
             color: "#1f77b4",
             points: &curve,
-            markers: false,
+            style: Style::Line,
         },
         Series {
             label: "stresses, slave (-n.sigma.n)",
             color: "#2ca02c",
             points: &ps,
-            markers: false,
+            style: Style::Line,
         },
         Series {
             label: "stresses, master (-n.sigma.n)",
             color: "#9467bd",
             points: &pm,
-            markers: false,
+            style: Style::Line,
         },
         Series {
             label: "multipliers",
             color: "#d62728",
             points: &mult,
-            markers: true,
+            style: Style::Markers,
         },
     ];
     let svg = plot::svg_with(
@@ -176,13 +186,13 @@ fn row_section(dir: &Path, row: &Row, html: &mut String) -> Result<()> {
                 label: "mu p (multipliers)",
                 color: "#1f77b4",
                 points: &mup,
-                markers: false,
+                style: Style::Line,
             },
             Series {
                 label: "|shear| (multipliers)",
                 color: "#d62728",
                 points: &t,
-                markers: true,
+                style: Style::Markers,
             },
         ];
         let o = Options {
@@ -259,7 +269,7 @@ fn row_section(dir: &Path, row: &Row, html: &mut String) -> Result<()> {
             label: l,
             color: colors[i % colors.len()],
             points: p,
-            markers: true,
+            style: Style::LineMarkers,
         })
         .collect();
     let o = Options {
@@ -334,31 +344,31 @@ pub fn study_plots(dir: &Path, doc: &serde_json::Value) -> Result<Vec<(String, S
                 label: "|peak/p0 - 1|",
                 color: "#d62728",
                 points: &peak,
-                markers: true,
+                style: Style::LineMarkers,
             },
             Series {
                 label: "|a_h/a - 1|",
                 color: "#1f77b4",
                 points: &half,
-                markers: true,
+                style: Style::LineMarkers,
             },
             Series {
                 label: "L2 error of the profile",
                 color: "#2ca02c",
                 points: &l2,
-                markers: true,
+                style: Style::LineMarkers,
             },
             Series {
                 label: "DY_B change from the coarser level",
                 color: "#9467bd",
                 points: &change,
-                markers: true,
+                style: Style::LineMarkers,
             },
             Series {
                 label: "profile change from the coarser level (L2)",
                 color: "#ff7f0e",
                 points: &profile_change,
-                markers: true,
+                style: Style::LineMarkers,
             },
         ];
         let o = Options {
@@ -375,25 +385,33 @@ pub fn study_plots(dir: &Path, doc: &serde_json::Value) -> Result<Vec<(String, S
         );
         let svg = plot_files(dir, &format!("study_{}", k + 1), svg, &series)?;
         let rates = &st["rates"];
+        let rate = |v: &serde_json::Value| v.as_f64().map_or("-".into(), |r| format!("{r:.2}"));
         let caption = format!(
             "Observed rates (slope in log h) against Hertz: peak {}, half-width {}, L2 {}; \
              of the change between levels: peak {}, DY_B {}, pressure profile (L2) {}.",
-            rates["error_vs_hertz"]["peak"],
-            rates["error_vs_hertz"]["half_width"],
-            rates["error_vs_hertz"]["l2"],
-            rates["change_between_levels"]["peak"],
-            rates["change_between_levels"]["dy_b"],
-            rates["change_between_levels"]["profile_l2"]
+            rate(&rates["error_vs_hertz"]["peak"]),
+            rate(&rates["error_vs_hertz"]["half_width"]),
+            rate(&rates["error_vs_hertz"]["l2"]),
+            rate(&rates["change_between_levels"]["peak"]),
+            rate(&rates["change_between_levels"]["dy_b"]),
+            rate(&rates["change_between_levels"]["profile_l2"])
         );
         out.push((svg, caption));
     }
     Ok(out)
 }
 
-/// The refinement-study section (from DIR/study.json), or None when there is none.
-fn study_section(dir: &Path) -> Result<Option<String>> {
+/// The refinement-study section (from DIR/study.json), or, when no study was run into DIR,
+/// a section that says so and gives the command that adds it.
+fn study_section(dir: &Path) -> Result<String> {
     let Ok(text) = std::fs::read_to_string(dir.join("study.json")) else {
-        return Ok(None);
+        return Ok(format!(
+            "<section><h2>Refinement study against Hertz</h2><p class=\"missing\">Not in this \
+             report: no refinement study was run into this folder. To add it, run \
+             <code>tribo study hertz --levels 3 --kinematics small --report {0}</code> (under a \
+             second), then <code>tribo validate --report {0}</code> again.</p></section>",
+            escape(&dir.display().to_string())
+        ));
     };
     let doc: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
         crate::error::Error::parse(dir.join("study.json").display().to_string(), e.to_string())
@@ -414,21 +432,47 @@ fn study_section(dir: &Path) -> Result<Option<String>> {
         );
     }
     html.push_str("</section>");
-    Ok(Some(html))
+    Ok(html)
+}
+
+/// The head of a report page (its style: text wraps, pictures shrink to the page width).
+fn head(title: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
+         <title>{}</title><style>\
+         body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}}\
+         table{{border-collapse:collapse}}td,th{{border:1px solid #bbb;padding:3px 8px;text-align:right}}\
+         td.l,th.l{{text-align:left}}.pass{{color:#1a7f1a}}.fail{{color:#c00;font-weight:bold}}\
+         figure{{margin:1em 0}}svg{{max-width:100%;height:auto}}\
+         pre{{white-space:pre-wrap;overflow-wrap:anywhere}}code,td.l{{overflow-wrap:anywhere}}\
+         .missing{{background:#fff6d5;padding:6px}}</style></head><body>\n",
+        escape(title)
+    )
+}
+
+/// A standalone page holding `body` (HTML).
+pub fn page(title: &str, body: &str) -> String {
+    format!(
+        "{}<h1>{}</h1>\n{body}</body></html>\n",
+        head(title),
+        escape(title)
+    )
+}
+
+/// The section of a `tribo study refine --report DIR` run into the same folder, if any.
+fn refine_section(dir: &Path) -> Result<Option<String>> {
+    let Ok(text) = std::fs::read_to_string(dir.join("refine.json")) else {
+        return Ok(None);
+    };
+    let doc: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
+        crate::error::Error::parse(dir.join("refine.json").display().to_string(), e.to_string())
+    })?;
+    super::study_refine::section(dir, &doc).map(Some)
 }
 
 pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<()> {
     std::fs::create_dir_all(dir).map_err(|e| crate::error::Error::io(dir, e))?;
-    let mut html = String::new();
-    let _ = writeln!(
-        html,
-        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\
-         <title>tribo: SSNP154 validation</title><style>\
-         body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}}\
-         table{{border-collapse:collapse}}td,th{{border:1px solid #bbb;padding:3px 8px;text-align:right}}\
-         td.l,th.l{{text-align:left}}.pass{{color:#1a7f1a}}.fail{{color:#c00;font-weight:bold}}\
-         figure{{margin:1em 0}}svg{{max-width:100%;height:auto}}</style></head><body>"
-    );
+    let mut html = head("tribo: SSNP154 validation");
     let all_pass = rows.iter().all(|r| r.checks.iter().all(|c| c.pass));
     let _ = writeln!(
         html,
@@ -454,15 +498,15 @@ pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<(
             let _ = writeln!(
                 html,
                 "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td><td class=\"l\">{}</td>\
-                 <td>{:.7}</td><td>{:.7}</td><td>{:.4}</td><td>{:.1}</td><td class=\"{}\">{}</td><td>{}</td><td>{:.3}</td></tr>",
+                 <td>{}</td><td>{}</td><td>{}</td><td>{}</td><td class=\"{}\">{}</td><td>{}</td><td>{:.2}</td></tr>",
                 escape(&r.id),
                 escape(&r.setup),
                 escape(&r.case.contact[0].formulation),
                 c.quantity,
-                c.value,
-                c.reference,
-                100.0 * c.rel_error,
-                100.0 * c.tolerance,
+                sig(c.value, 6),
+                sig(c.reference, 6),
+                sig(100.0 * c.rel_error, 2),
+                sig(100.0 * c.tolerance, 2),
                 if c.pass { "pass" } else { "fail" },
                 if c.pass { "yes" } else { "NO" },
                 r.outcome.report.total_iterations,
@@ -474,7 +518,8 @@ pub fn write(dir: &Path, rows: &[Row], source: &str, settings: &str) -> Result<(
     for r in rows {
         row_section(dir, r, &mut html)?;
     }
-    if let Some(s) = study_section(dir)? {
+    html.push_str(&study_section(dir)?);
+    if let Some(s) = refine_section(dir)? {
         html.push_str(&s);
     }
     let _ = writeln!(

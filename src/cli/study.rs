@@ -60,12 +60,12 @@ pub fn hertz(opts: &Options) -> Result<i32> {
             Kinematics::Small => "small",
             Kinematics::Large => "large",
         };
-        println!(
+        crate::say!(
             "SSNP154 refinement study: {} cells, {}, {kname} kinematics (Hertz a = {A} mm, p0 = {P0} MPa)",
             if opts.quadratic { "quadratic" } else { "linear" },
             opts.formulation
         );
-        println!(
+        crate::say!(
             "{:>5} {:>7} {:>7} {:>9} {:>10} {:>8} {:>9} {:>9} {:>10} {:>6} {:>7}",
             "level",
             "size",
@@ -88,10 +88,14 @@ pub fn hertz(opts: &Options) -> Result<i32> {
             let id = if opts.quadratic { "B" } else { "A" };
             let mut c = ssnp154::contact_case(id, spec, Some(opts.formulation));
             c.model.kinematics = kin;
-            progress(k, opts.levels, kname);
+            crate::progress::stage(&format!(
+                "{kname} kinematics, level {} of {}, h = {size} mm, {} nodes",
+                k + 1,
+                opts.levels,
+                mesh.num_nodes()
+            ));
             let out = case::run(&c, &mesh, false)?;
             let wall = t0.elapsed().as_secs_f64();
-            progress(k + 1, opts.levels, kname);
             // large kinematics: the true pressure at the deformed abscissa, as measured
             let samples: Vec<(f64, f64)> = match kin {
                 Kinematics::Small => out.contact_pressure[0]
@@ -128,7 +132,7 @@ pub fn hertz(opts: &Options) -> Result<i32> {
                 iterations: out.report.total_iterations,
                 wall,
             };
-            println!(
+            crate::say!(
                 "{k:>5} {size:>7.4} {:>7} {:>9} {:>10.2} {:>8.3} {:>9.4} {:>9.3} {:>10.3} {:>6} {:>7.2}",
                 level.nodes,
                 level.slave,
@@ -183,7 +187,7 @@ pub fn hertz(opts: &Options) -> Result<i32> {
                 "profile_l2": fitted_rate(&ch_profile),
             },
         });
-        println!(
+        crate::say!(
             "observed rates (least-squares slope in log h): against Hertz: peak {}, half-width {}, L2 {};\n  \
              of the change between levels: peak {}, half-width {}, DY_B {}, profile (L2) {}\n",
             show(fitted_rate(&err_peak)),
@@ -214,31 +218,12 @@ pub fn hertz(opts: &Options) -> Result<i32> {
     }
     if let Some(dir) = opts.svg_dir {
         let n = super::report::study_plots(dir, &doc)?.len();
-        println!("{n} log-log plots in {}", dir.display());
+        crate::say!("{n} log-log plots in {}", dir.display());
     }
     if let Some(p) = opts.csv {
         write_atomic(p, csv.as_bytes())?;
     }
     Ok(0)
-}
-
-/// A progress bar on stderr when it is a terminal (levels get ~4x dearer each).
-fn progress(done: usize, total: usize, what: &str) {
-    use std::io::{IsTerminal, Write};
-    let mut e = std::io::stderr();
-    if !e.is_terminal() {
-        return;
-    }
-    let width = 30;
-    let filled = width * done / total.max(1);
-    let _ = write!(
-        e,
-        "\r[{}{}] level {done}/{total} ({what} kinematics){}",
-        "#".repeat(filled),
-        ".".repeat(width - filled),
-        if done == total { "\n" } else { "" }
-    );
-    let _ = e.flush();
 }
 
 fn show(r: Option<f64>) -> String {

@@ -139,20 +139,23 @@ pub fn svg(p: &Picture) -> String {
         let _ = writeln!(
             s,
             r#"<rect x="{bx}" y="{:.1}" width="18" height="{:.2}" fill="{}"/>"#,
-            t + ph * 0.6 * (1.0 - f),
-            ph * 0.6 / 49.0 + 0.5,
+            t + 26.0 + (ph * 0.6 - 26.0) * (1.0 - f),
+            (ph * 0.6 - 26.0) / 49.0 + 0.5,
             color(f)
         );
     }
     let _ = writeln!(
         s,
-        r#"<text x="{:.1}" y="{:.1}">{:.0}</text><text x="{:.1}" y="{:.1}">0</text><text x="{bx}" y="{:.1}">von Mises (MPa)</text>"#,
+        // (the title in two lines: the 90 px right of the picture hold "von Mises" but
+        // not "von Mises (MPa)")
+        r#"<text x="{:.1}" y="{:.1}">{:.0}</text><text x="{:.1}" y="{:.1}">0</text><text x="{bx}" y="{:.1}">von Mises</text><text x="{bx}" y="{:.1}">(MPa)</text>"#,
         bx + 22.0,
-        t + 10.0,
+        t + 10.0 + 26.0,
         vmax,
         bx + 22.0,
         t + ph * 0.6 + 4.0,
-        t - 8.0
+        t - 8.0,
+        t + 8.0
     );
     for (k, (label, c)) in [
         ("open", "#ffffff"),

@@ -1,5 +1,12 @@
-//! Small dependency-free SVG line/point plots: linear or log axes, shaded x-bands, a legend;
-//! the data ranges are written on the document so that `read_back` recovers the data.
+//! Small dependency-free SVG line/point plots: linear or log axes, shaded x-bands, a legend
+//! below the plot box (never over the data); the data ranges are written on the document so
+//! that `read_back` recovers the data.
+//!
+//! Hand-written rather than `plotters`: the report's checks need what its SVG backend does
+//! not write (the plot box and data ranges on the root element, one tagged element per
+//! series, so that tests read the plotted points back and compare them with the CSV), and a
+//! legend outside the plot box, which its series-label box does not offer; the whole module
+//! is ~250 lines with no dependency.
 
 use std::fmt::Write;
 
@@ -7,8 +14,16 @@ pub struct Series<'a> {
     pub label: &'a str,
     pub color: &'a str,
     pub points: &'a [(f64, f64)],
-    /// Draw markers instead of a line.
-    pub markers: bool,
+    pub style: Style,
+}
+
+/// How a series is drawn.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Style {
+    Line,
+    Markers,
+    /// Markers joined by a line (e.g. the iterations of one Newton step).
+    LineMarkers,
 }
 
 /// A "nice" tick step for a range.
@@ -54,8 +69,25 @@ pub fn svg(title: &str, xlabel: &str, ylabel: &str, series: &[Series]) -> String
 /// element as `data-box="l t w h"`, `data-x="x0 x1"`, `data-y="y0 y1"` (log10 values on a
 /// log axis) so that a reader can turn the points back into data.
 pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &Options) -> String {
-    let (w, h) = (760.0, 480.0);
-    let (l, r, t, b) = (80.0, 30.0, 40.0, 60.0);
+    // the legend: bands then series, in rows of two columns (one when a label is long)
+    // under the x-axis label
+    let legend: Vec<(&str, &str)> = o
+        .bands
+        .iter()
+        .map(|b| (b.label, b.color))
+        .chain(series.iter().map(|s| (s.label, s.color)))
+        .collect();
+    let columns = if legend.iter().all(|e| e.0.chars().count() <= LEGEND_CHARS) {
+        2
+    } else {
+        1
+    };
+    let legend_rows = legend.len().div_ceil(columns);
+    let (w, plot_h) = (760.0, 480.0);
+    let h = plot_h + 18.0 * legend_rows as f64 + if legend_rows > 0 { 8.0 } else { 0.0 };
+    let (l, r, t) = (80.0, 30.0, 40.0);
+    // bottom margin of the plot box: tick labels and the x-axis label
+    let b = 60.0 + (h - plot_h);
     let tx = |x: f64| if o.log_x { x.log10() } else { x };
     let ty = |y: f64| if o.log_y { y.log10() } else { y };
     let ok = |x: f64, y: f64| {
@@ -175,7 +207,7 @@ pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &
         s,
         r#"<text x="{:.1}" y="{:.1}" text-anchor="middle">{}</text>"#,
         (l + w - r) / 2.0,
-        h - 16.0,
+        h - b + 44.0,
         escape(xlabel)
     );
     let _ = writeln!(
@@ -185,12 +217,6 @@ pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &
         (t + h - b) / 2.0,
         escape(ylabel)
     );
-    let legend: Vec<(&str, &str)> = o
-        .bands
-        .iter()
-        .map(|b| (b.label, b.color))
-        .chain(series.iter().map(|s| (s.label, s.color)))
-        .collect();
     for ser in series {
         let pts: Vec<String> = ser
             .points
@@ -198,13 +224,21 @@ pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &
             .filter(|p| ok(p.0, p.1))
             .map(|&(x, y)| format!("{:.3},{:.3}", px(tx(x)), py(ty(y))))
             .collect();
-        if ser.markers {
+        if ser.style != Style::Line {
             let _ = writeln!(
                 s,
                 r#"<g fill="{}" class="series" data-label="{}">"#,
                 ser.color,
                 escape(ser.label)
             );
+            if ser.style == Style::LineMarkers {
+                let _ = writeln!(
+                    s,
+                    r#"<polyline fill="none" stroke="{}" stroke-width="1.5" points="{}"/>"#,
+                    ser.color,
+                    pts.join(" ")
+                );
+            }
             for p in &pts {
                 let (a, c) = p.split_once(',').unwrap();
                 let _ = writeln!(s, r#"<circle cx="{a}" cy="{c}" r="3"/>"#);
@@ -220,9 +254,10 @@ pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &
             );
         }
     }
+    let _ = writeln!(s, r#"<g class="legend">"#);
     for (k, (text, color)) in legend.iter().enumerate() {
-        let ly = t + 18.0 + 18.0 * k as f64;
-        let lx = w - r - 230.0;
+        let ly = plot_h + 8.0 + 18.0 * (k / columns) as f64;
+        let lx = l + (k % columns) as f64 * (w - l - r) / columns as f64;
         let _ = writeln!(
             s,
             r#"<rect x="{lx}" y="{:.1}" width="14" height="6" fill="{color}"/>"#,
@@ -235,8 +270,28 @@ pub fn svg_with(title: &str, xlabel: &str, ylabel: &str, series: &[Series], o: &
             escape(text)
         );
     }
-    s.push_str("</svg>\n");
+    s.push_str("</g>\n</svg>\n");
     s
+}
+
+/// Legend labels up to this many characters fit two to a row (13 px sans-serif).
+const LEGEND_CHARS: usize = 40;
+
+/// A number to `digits` significant digits, without an exponent for 1e-4 ≤ |v| < 1e6
+/// (tables and captions: a rate is 1.52, not 1.5182325275954309).
+pub fn sig(v: f64, digits: usize) -> String {
+    if !v.is_finite() {
+        return "-".into();
+    }
+    if v == 0.0 {
+        return "0".into();
+    }
+    let mag = v.abs().log10().floor() as i32;
+    if !(-4..6).contains(&mag) {
+        return format!("{:.*e}", digits.saturating_sub(1), v);
+    }
+    let decimals = (digits as i32 - 1 - mag).max(0) as usize;
+    format!("{v:.decimals$}")
 }
 
 /// Text for XML content and attributes.
@@ -331,7 +386,7 @@ mod tests {
                 label: "d",
                 color: "red",
                 points: &data,
-                markers: false,
+                style: Style::Line,
             }],
         );
         assert!(doc.starts_with("<svg"));
@@ -368,7 +423,11 @@ mod tests {
                 label: "a<b",
                 color: "red",
                 points: &data,
-                markers: log_y,
+                style: if log_y {
+                    Style::LineMarkers
+                } else {
+                    Style::Line
+                },
             }];
             let doc = svg_with("t", "x", "y", &s, &o);
             let back = read_back(&doc);

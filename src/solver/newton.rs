@@ -368,6 +368,11 @@ pub fn solve_into(
             lambda = ends[next];
         }
         let x_start = x.clone();
+        let (step_k, step_n) = (next + 1, ends.len());
+        if settings.verbose {
+            eprintln!("load step {step_k} of {step_n}: t = {lambda:.4}");
+        }
+        crate::progress::load_step(step_k, step_n, lambda);
         // Candidate starts: the plain one (the last state), the previous step's increment
         // extrapolated to this step (SSNP154 D: 20 -> 15 Newton iterations; where it
         // overshoots, e.g. large strains on fine meshes, it loses), and with imposed motions
@@ -578,6 +583,7 @@ pub fn solve_into(
                 frozen_bodies: frozen,
                 step_length,
             });
+            crate::progress::iteration(step_k, step_n, lambda, it, rel);
             if settings.verbose {
                 let note = if resolve {
                     "  (same point, new contact statuses)"

@@ -41,6 +41,7 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         "mesh": {"nodes": mesh.num_nodes(), "cells": mesh.num_cells()},
         "modelisation": case.model.modelisation.name(),
     });
+    crate::progress::stage(&format!("{} ({} nodes)", path.display(), mesh.num_nodes()));
     let (outcome, failure) = match case::run_keeping(&case, &mesh, verbose) {
         Ok(o) => (Some(o), None),
         // an input error: nothing solved, the old results stay (`staging` is deleted)
@@ -94,9 +95,9 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
         return Ok(0);
     };
     for (name, v) in &outcome.probes {
-        println!("{name:<12} {v:.10e}");
+        crate::say!("{name:<12} {v:.10e}");
     }
-    println!(
+    crate::say!(
         "converged in {} Newton iterations ({} load steps), {:.3} s; results in {}",
         outcome.report.total_iterations,
         outcome.report.steps.len(),

@@ -207,7 +207,7 @@ pub fn outcome_files(
             label: "multipliers (-lambda)",
             color: "#d62728",
             points: &shown,
-            markers: true,
+            style: plot::Style::Markers,
         }];
         if !curve.is_empty() {
             series.insert(
@@ -216,7 +216,7 @@ pub fn outcome_files(
                     label: "Hertz",
                     color: "#1f77b4",
                     points: &curve,
-                    markers: false,
+                    style: plot::Style::Line,
                 },
             );
         }
