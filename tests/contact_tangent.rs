@@ -26,8 +26,21 @@ fn check_with(kind: CellKind, formulation: &str, extra: &str, tolerance: f64) {
     check_in(kind, formulation, extra, "plane_strain", tolerance)
 }
 
-/// The same in a given modelisation (the blocks lie at x ≥ 0: axisymmetry is meaningful).
 fn check_in(kind: CellKind, formulation: &str, extra: &str, model: &str, tolerance: f64) {
+    check_from(kind, formulation, extra, model, tolerance, false)
+}
+
+/// The same in a given modelisation (the blocks lie at x ≥ 0: axisymmetry is meaningful);
+/// with `commit_half`, a load step first ends at half the state (slips are then measured
+/// from there, and a tangential penalty starts from the forces there).
+fn check_from(
+    kind: CellKind,
+    formulation: &str,
+    extra: &str,
+    model: &str,
+    tolerance: f64,
+    commit_half: bool,
+) {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 3, 2, kind, 0.0).unwrap();
     let upper = rectangle([0.15, 0.0], 1.7, 0.8, 4, 2, kind, 0.0).unwrap();
     let mesh = common::bodies(&[("Lower", &lower), ("Upper", &upper)]);
@@ -78,6 +91,11 @@ fn check_in(kind: CellKind, formulation: &str, extra: &str, model: &str, toleran
         };
     }
     let mut r = vec![0.0; n];
+    if commit_half {
+        let half: Vec<f64> = x.iter().map(|v| 0.5 * v).collect();
+        p.evaluate(&half, 1.0, &mut r, false).unwrap();
+        p.commit_step();
+    }
     p.evaluate(&x, 1.0, &mut r, true).unwrap();
     let a = p.matrix().clone();
     let dir: Vec<f64> = (0..n)
@@ -133,6 +151,30 @@ fn frictional_tangent_matches_finite_differences() {
     check_with(CellKind::Quad4, "point-to-segment", nodal, 1e-6);
     check_with(CellKind::Quad8, "point-to-segment", nodal, 1e-6);
     check_with(CellKind::Quad8, "node-to-segment", "friction = 0.3", 1e-6);
+}
+
+/// Node-to-segment friction with a tangential penalty (stick stiffness): the tangential
+/// multiplier is the force; stick and slip nodes, with and without a normal penalty, from
+/// rest and from a committed step (forces and slips carried over).
+#[test]
+fn tangential_penalty_tangent_matches_finite_differences() {
+    for kind in [CellKind::Quad4, CellKind::Quad8] {
+        for extra in [
+            "friction = 0.3\ntangential_penalty = 1000.0",
+            "friction = 0.3\ntangential_penalty = 1000.0\npenalty = 1e4",
+        ] {
+            for commit_half in [false, true] {
+                check_from(
+                    kind,
+                    "node-to-segment",
+                    extra,
+                    "plane_strain",
+                    1e-6,
+                    commit_half,
+                );
+            }
+        }
+    }
 }
 
 /// Mortar with Coulomb friction: stick and slip nodes.

@@ -244,6 +244,9 @@ fn check_contacts(case: &CaseFile) -> Result<()> {
         if let Some(k) = c.penalty {
             positive(k, &what, "penalty")?;
         }
+        if let Some(k) = c.tangential_penalty {
+            positive(k, &what, "tangential_penalty")?;
+        }
         if let Some(a) = c.adjust {
             finite(a, &what, "adjust")?;
         }

@@ -354,6 +354,19 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 "{what}: penalty goes with formulation = \"node-to-segment\""
             )));
         }
+        if c.tangential_penalty.is_some() && !(node_to_segment && c.friction > 0.0) {
+            return Err(Error::model(format!(
+                "{what}: tangential_penalty (a stick stiffness) goes with formulation = \
+                 \"node-to-segment\" and friction > 0"
+            )));
+        }
+        if let Some(k) = c.tangential_penalty {
+            if !(k.is_finite() && k > 0.0) {
+                return Err(Error::model(format!(
+                    "{what}: tangential_penalty must be a positive number, got {k}"
+                )));
+            }
+        }
         if let Some(k) = c.penalty {
             if k.is_nan() || k <= 0.0 {
                 return Err(Error::model(format!(
@@ -483,6 +496,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             friction: (c.friction > 0.0).then_some(c.friction),
             rho_f: c.rho_f.unwrap_or(60.0 / h_min),
             friction_excluded,
+            tangential_penalty: c.tangential_penalty,
             smoothed_normal: match c.master_normal.as_deref() {
                 None | Some("smoothed") => true,
                 Some("segment") => false,

@@ -419,6 +419,11 @@ pub struct ContactSpec {
     /// non-penetration by multipliers.
     #[serde(default)]
     pub penalty: Option<f64>,
+    /// node-to-segment with friction: tangential penalty (stick stiffness, force per
+    /// length): a sticking node's tangential force is −k_t × its elastic slip instead of
+    /// exact stick. None: exact stick.
+    #[serde(default)]
+    pub tangential_penalty: Option<f64>,
     /// Node groups of slave nodes excluded from contact (no pressure there).
     #[serde(default)]
     pub exclude: Vec<String>,

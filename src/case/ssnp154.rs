@@ -219,6 +219,7 @@ pub fn contact_case(id: &str, mesh: MeshSpec, formulation: Option<&str>) -> Case
         rho_f: None,
         friction_exclude: vec![],
         penalty: None,
+        tangential_penalty: None,
         exclude: if tied { vec!["C".into()] } else { vec![] },
         // the reference's own cell normals on the cylinder's polygon (no smoothing)
         master_normal: (formulation != "mortar").then(|| "segment".into()),

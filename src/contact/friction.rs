@@ -2,7 +2,8 @@
 //! reference code's semi-multiplier form: Λ is the tangential traction divided by μ|λ|
 //! (so |Λ| ≤ 1), Δw the slip along the master tangent since the start of the load step,
 //! and t = Λ + ρ_f Δw the augmented trial value. |t| ≤ 1 sticks, otherwise the point slips
-//! with Λ = sign(t): a return map onto the Coulomb cone.
+//! with Λ = sign(t): a return map onto the Coulomb cone. (A tangential penalty's return
+//! map, on forces, is `point_segment::penalty_friction`.)
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum State {

@@ -50,8 +50,8 @@ pub trait ContactPair {
     fn open_at_rest(&mut self, _mesh: &Mesh) -> bool {
         false
     }
-    /// The load step converged at displacement u.
-    fn commit(&mut self, u: &[f64]);
+    /// The load step converged at displacement u and multipliers `lam` (this pair's).
+    fn commit(&mut self, u: &[f64], lam: &[f64]);
     fn restore(&mut self);
     /// The slave and master surfaces.
     fn surfaces(&self) -> (&Surface, &Surface);

@@ -70,6 +70,10 @@ pub struct Options {
     pub rho_f: f64,
     /// Slave nodes excluded from friction only (the reference's SANS_GROUP_NO_FR).
     pub friction_excluded: Vec<usize>,
+    /// Node-to-segment tangential penalty k_t (a stick stiffness, force per length): a
+    /// sticking node's tangential force is its force at the step start − k_t × its slip
+    /// since, instead of exact stick (no slip) by the multiplier.
+    pub tangential_penalty: Option<f64>,
     /// Straight master cells: the gap and force along the normal interpolated between the
     /// vertices' averaged normals (continuous along the surface), or along each cell's own
     /// normal (the reference code's default, which SSNP154 reproduces).
@@ -90,6 +94,7 @@ impl Default for Options {
             friction: None,
             rho_f: 100.0,
             friction_excluded: vec![],
+            tangential_penalty: None,
             smoothed_normal: true,
         }
     }
@@ -156,6 +161,9 @@ pub struct PointToSegment {
     reported_from_neighbours: Vec<bool>,
     /// Initial positions of the slave nodes (multiplier order).
     mult_coords: Vec<[f64; 2]>,
+    /// Per multiplier, the tangential force at the start of the load step (the spring
+    /// force a tangential penalty starts the step from).
+    q_start: Vec<f64>,
 }
 
 /// Coefficients of a linear form over dofs: (dof, value).
@@ -379,6 +387,7 @@ impl PointToSegment {
             opts.friction_excluded.extend(excluded);
         }
         let n_points = points.len();
+        let n_mult = mult_nodes.len();
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         PointToSegment {
             slave,
@@ -398,6 +407,7 @@ impl PointToSegment {
             weightless,
             reported_from_neighbours,
             mult_coords,
+            q_start: vec![0.0; n_mult],
         }
     }
 
@@ -1029,9 +1039,14 @@ impl PointToSegment {
         changes
     }
 
-    pub fn commit(&mut self, u: &[f64]) {
+    pub fn commit(&mut self, u: &[f64], lam: &[f64]) {
         self.saved_status = self.points.iter().map(|p| p.active).collect();
         self.u_start.copy_from_slice(u);
+        if self.opts.friction.is_some() && self.opts.tangential_penalty.is_some() {
+            // (the tangential multipliers are the forces)
+            let nm = self.mult_nodes.len();
+            self.q_start.copy_from_slice(&lam[nm..2 * nm]);
+        }
     }
 
     pub fn restore(&mut self) {
@@ -1066,14 +1081,14 @@ impl PointToSegment {
         tv: &[(usize, f64)],
         cxi: &[(usize, f64)],
         cn: &[(usize, f64)],
-        t: f64,
-        law: friction::State,
+        q: f64,
+        stick: Option<(f64, f64)>,
         k: &mut Triplets,
         fm: &[(usize, f64)],
         mbase: usize,
     ) {
         let e = fp.e;
-        let (w, mu, lp) = (fp.w, fp.mu, fp.lp);
+        let w = fp.w;
         let du = |n: usize, c: usize| u[2 * n + c] - self.u_start[2 * n + c];
         let mut big_du = [0.0; 2];
         for c in 0..2 {
@@ -1097,17 +1112,17 @@ impl PointToSegment {
             .map(|&(col, v)| (col, n_du * v))
             .chain(cxi.iter().map(|&(col, v)| (col, -tdu_m * v)))
             .collect();
-        let q = friction::traction(mu, lp, t, law); // μ λ t (stick) or μ λ sign(t) (slip)
-        if law == friction::State::Stick {
-            // q = μ λ (Λ + ρ_f Δw): the force on the dofs T and the stick rows −μ λ Δw
-            for &(d, v) in tv {
+        // sticking: the force on the dofs T and the stick rows depend on Δw, with these
+        // coefficients
+        if let Some((force, row)) = stick {
+            for &(d, v) in tv.iter().filter(|_| force != 0.0) {
                 for &(col, gv) in &g_dw {
-                    k.add(d, col, -w * mu * lp * self.opts.rho_f * v * gv);
+                    k.add(d, col, force * v * gv);
                 }
             }
             for &(m, nv) in fm {
                 for &(col, gv) in &g_dw {
-                    k.add(mbase + m, col, -w * mu * lp * nv * gv);
+                    k.add(mbase + m, col, row * nv * gv);
                 }
             }
         }
@@ -1186,6 +1201,18 @@ impl PointToSegment {
             .enumerate()
             .map(|(a, n)| e.ns[a] * lam[nm + self.mult_of[n]])
             .sum();
+        if let (true, Some(k_t)) = (fp.chi, self.opts.tangential_penalty) {
+            let pen = Penalty {
+                k_t,
+                tv: &tv,
+                fm: &fm,
+                nmults: &nmults,
+                q: big_l,
+                dw,
+            };
+            self.penalty_friction(fp, &pen, u, ru, rl, k, mbase);
+            return;
+        }
         // Friction needs a pressure: a point with (numerically) no normal multiplier gets the
         // "no contact" row, as an exactly zero λ does in the reference, so that the slip row
         // μ λ (Λ − sign t) / ρ_f never degenerates.
@@ -1200,7 +1227,11 @@ impl PointToSegment {
         }
         let (t, law) = friction::state(big_l, dw, rho_f);
         if let Some((cxi, cn)) = fp.geo {
-            self.friction_geometry(fp, u, &tv, cxi, cn, t, law, k, &fm, mbase);
+            // q = μ λ t (stick: μ λ (Λ + ρ_f Δw)) or μ λ sign(t) (slip)
+            let q = friction::traction(mu, lp, t, law);
+            let stick =
+                (law == friction::State::Stick).then_some((-w * mu * lp * rho_f, -w * mu * lp));
+            self.friction_geometry(fp, u, &tv, cxi, cn, q, stick, k, &fm, mbase);
         }
         if law == friction::State::Stick {
             let q = friction::traction(mu, lp, t, law); // μ λ t
@@ -1243,6 +1274,77 @@ impl PointToSegment {
                         mbase + m2,
                         w * mu * (big_l - sg) / rho_f * nv * n2,
                     );
+                }
+            }
+        }
+    }
+}
+
+/// What a tangential-penalty point needs besides the normal terms.
+struct Penalty<'a> {
+    k_t: f64,
+    /// T over dofs (slave N_s τ, master −N_m τ), the friction multipliers and the normal
+    /// ones of the cell with their N_s
+    tv: &'a [(usize, f64)],
+    fm: &'a [(usize, f64)],
+    nmults: &'a [(usize, f64)],
+    /// the tangential force at the point (its multiplier) and the slip since the step start
+    q: f64,
+    dw: f64,
+}
+
+impl PointToSegment {
+    /// Coulomb friction with a tangential penalty k_t at an active point: the tangential
+    /// multiplier Q is the force on the slave along τ (not a semi-multiplier: at λ = 0 a
+    /// multiplier scaled by μλ would be undetermined, and a body held by friction alone
+    /// would start singular). With the trial force q_tr = q_start − k_t Δw and the cone
+    /// μ max(−λ, 0): stick if |q_tr| ≤ the cone (row Q = q_tr), otherwise slip (row
+    /// Q = cone · sign q_tr). The force −Q T goes to the dofs.
+    #[allow(clippy::too_many_arguments)]
+    fn penalty_friction(
+        &self,
+        fp: &FrictionPoint,
+        pen: &Penalty,
+        u: &[f64],
+        ru: &mut [f64],
+        rl: &mut [f64],
+        k: &mut Triplets,
+        mbase: usize,
+    ) {
+        let (e, w, mu, lp) = (fp.e, fp.w, fp.mu, fp.lp);
+        let q_start: f64 = fp
+            .snodes
+            .iter()
+            .enumerate()
+            .map(|(a, n)| e.ns[a] * self.q_start[self.mult_of[n]])
+            .sum();
+        let trial = q_start - pen.k_t * pen.dw;
+        let cone = mu * (-lp).max(0.0);
+        let stick = trial.abs() <= cone;
+        if let Some((cxi, cn)) = fp.geo {
+            let rows = stick.then_some((0.0, w * pen.k_t));
+            self.friction_geometry(fp, u, pen.tv, cxi, cn, pen.q, rows, k, pen.fm, mbase);
+        }
+        for &(d, v) in pen.tv {
+            ru[d] += -w * pen.q * v;
+            for &(m, nv) in pen.fm {
+                k.add(d, mbase + m, -w * v * nv);
+            }
+        }
+        let sg = trial.signum();
+        let target = if stick { trial } else { cone * sg };
+        for &(m, nv) in pen.fm {
+            rl[m] += w * (pen.q - target) * nv;
+            for &(m2, n2) in pen.fm {
+                k.add(mbase + m, mbase + m2, w * nv * n2);
+            }
+            if stick {
+                for &(d, v) in pen.tv {
+                    k.add(mbase + m, d, w * pen.k_t * nv * v);
+                }
+            } else if lp < 0.0 {
+                for &(m2, n2) in pen.nmults {
+                    k.add(mbase + m, mbase + m2, w * mu * sg * nv * n2);
                 }
             }
         }
@@ -1323,8 +1425,8 @@ impl super::pair::ContactPair for PointToSegment {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         self.update_status(mesh, u, lam)
     }
-    fn commit(&mut self, u: &[f64]) {
-        self.commit(u)
+    fn commit(&mut self, u: &[f64], lam: &[f64]) {
+        self.commit(u, lam)
     }
     fn restore(&mut self) {
         self.restore()
@@ -1366,10 +1468,15 @@ impl super::pair::ContactPair for PointToSegment {
             return vec![];
         };
         let nm = self.mult_nodes.len();
+        // (with a tangential penalty the multiplier is the force itself)
+        let scale = |k: usize| match self.opts.tangential_penalty {
+            Some(_) => 1.0,
+            None => mu * lam[k],
+        };
         self.mult_nodes
             .iter()
             .enumerate()
-            .map(|(k, &n)| (n, mu * lam[k] * lam[nm + k] / self.node_weight[k]))
+            .map(|(k, &n)| (n, scale(k) * lam[nm + k] / self.node_weight[k]))
             .collect()
     }
     fn friction(&self) -> f64 {

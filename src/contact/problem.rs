@@ -244,8 +244,9 @@ impl Nonlinear for ContactProblem<'_> {
     }
 
     fn commit_step(&mut self) {
-        for p in &mut self.pairs {
-            p.commit(&self.solid.u);
+        for (p, &base) in self.pairs.iter_mut().zip(&self.mult_base) {
+            let n = p.num_multipliers();
+            p.commit(&self.solid.u, &self.lam[base..base + n]);
         }
         self.saved_lam.clone_from(&self.lam);
         self.committed_u.clone_from(&self.solid.u);

@@ -12,6 +12,19 @@
 //! MED stores 2D cells clockwise: they are given our (counter-clockwise) order here, so
 //! that `Mesh::reoriented` only counts cells that break the format's own convention.
 //! A space dimension of 3 is accepted when every z is zero (Salome writes planar meshes so).
+//!
+//! Files of HDF5 before 1.6.3 (older MED 2.x) store data-layout messages of versions 1
+//! and 2, which `hdf5-pure` 0.47 refuses (`invalid data layout version: 2`). The fix is
+//! made in the crate, vendored with a patch to `DataLayout::parse` (vendor/hdf5-pure,
+//! PATCH.md, ready to send upstream: 80 lines of parser and comments, 108 of unit tests),
+//! rather than wrapped here: `hdf5-pure` keeps a dataset's object header private, so a
+//! wrapper would need its own reader of the old format (superblock 0, symbol-table groups
+//! with their B-trees and heaps, version 1 object headers and continuations, chunk
+//! B-trees and deflate) only to reach a message the crate already locates, some 400
+//! lines duplicating tested code. The vendored copy is the published 0.47.0 otherwise
+//! (126 892 lines, 6.3 MB, compiled either way: no build-time change);
+//! tests/med_layouts.rs reads one mesh in layout versions 1 to 4, contiguous, chunked and
+//! compact.
 
 use super::{CellKind, Mesh, MeshBuilder};
 use crate::error::{Error, Result};

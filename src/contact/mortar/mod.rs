@@ -584,7 +584,7 @@ impl ContactPair for Mortar {
         self.statuses_linearised(u, lam)
     }
 
-    fn commit(&mut self, u: &[f64]) {
+    fn commit(&mut self, u: &[f64], _lam: &[f64]) {
         // (the terms measure slips from the step start, which moves)
         self.terms_cache.lock().unwrap().take();
         self.switches.fill(0);
