@@ -188,17 +188,20 @@ fn solve(case: CaseFile, dir: &Path, t0: Instant) -> Result<Run, RunError> {
 
 /// Solves a case given as a file path (`is_path`) or as TOML text; a text's mesh file is
 /// relative to `base_dir`. The GIL is released from parsing to the end of the solve.
+/// `threads`: the element kernels' threads (a pool of its own; default: all cores), 1 for
+/// variants run side by side, whose own threads would only contend for the cores.
 #[pyfunction]
-#[pyo3(signature = (source, is_path, base_dir, name))]
+#[pyo3(signature = (source, is_path, base_dir, name, threads=None))]
 fn run(
     py: Python<'_>,
     source: String,
     is_path: bool,
     base_dir: PathBuf,
     name: String,
+    threads: Option<usize>,
 ) -> PyResult<Run> {
     let t0 = Instant::now();
-    let done = py.detach(move || {
+    let work = move || {
         let (case, dir) = if is_path {
             case::load(Path::new(&source)).map_err(RunError::Before)?
         } else {
@@ -208,6 +211,16 @@ fn run(
             )
         };
         solve(case, &dir, t0)
+    };
+    let done = py.detach(move || match threads {
+        None => work(),
+        Some(n) => match rayon::ThreadPoolBuilder::new()
+            .num_threads(n.max(1))
+            .build()
+        {
+            Ok(pool) => pool.install(work),
+            Err(e) => Err(RunError::Before(Error::model(format!("thread pool: {e}")))),
+        },
     });
     match done {
         Ok(r) => Ok(r),

@@ -228,3 +228,21 @@ def test_a_dict_with_a_mesh_file_reads_it_relative_to_base_dir(tmp_path):
     assert (r.displacement == 0.0).all()
     with pytest.raises(tribo.CaseError, match="two_quads.msh"):
         tribo.run(case, base_dir=tmp_path / "elsewhere")
+
+
+def test_the_readme_example_runs(tmp_path, monkeypatch):
+    from conftest import ROOT
+
+    readme = (ROOT / "README.md").read_text()
+    at = readme.index("## Python")
+    start = readme.index("```python\n", at) + len("```python\n")
+    code = readme[start:readme.index("```", start)]
+    test_read_mesh(tmp_path)
+    (tmp_path / "two_quads.msh").rename(tmp_path / "mesh.msh")
+    (tmp_path / "cases").symlink_to(ROOT / "cases")
+    monkeypatch.chdir(tmp_path)
+    scope = {}
+    exec(compile(code, "README.md", "exec"), scope)
+    assert scope["r"].probes["DY_B"] < 0
+    assert (tmp_path / "a.vtu").stat().st_size > 1000
+    assert scope["mesh"].num_nodes == 6

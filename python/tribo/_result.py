@@ -51,14 +51,15 @@ def load_case(case):
     return _native.load_case(source, is_path)
 
 
-def run(case, base_dir=None):
+def run(case, base_dir=None, threads=None):
     """Solves `case`: a TOML file path, TOML text, or a dict of the same tables. A mesh file
     named by text or a dict is relative to `base_dir` (default: the current folder).
 
     Raises CaseError for a case that cannot be run and SolveError for a failed solve (with
     `.report`, the Newton report, and `.time`, the time of the failing step); both are
-    TriboError and carry tribo's message. The GIL is released while solving."""
-    return Result(_native.run(*_source(case, base_dir)))
+    TriboError and carry tribo's message. The GIL is released while solving. `threads`:
+    the threads of the element kernels (default: all cores)."""
+    return Result(_native.run(*_source(case, base_dir), threads))
 
 
 class Result:

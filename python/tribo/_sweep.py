@@ -83,7 +83,7 @@ def _pair_columns(results):
     return row
 
 
-def run_variant(case, base_dir, overrides, index, fields=None):
+def run_variant(case, base_dir, overrides, index, fields=None, threads=None):
     """One variant's row (a plain dict, so that it travels back from a Dask worker)."""
     row = {"variant": index, **overrides}
     t0 = time.perf_counter()
@@ -91,7 +91,7 @@ def run_variant(case, base_dir, overrides, index, fields=None):
         c = copy.deepcopy(case)
         for address, value in overrides.items():
             set_value(c, address, value)
-        r = run(c, base_dir=base_dir)
+        r = run(c, base_dir=base_dir, threads=threads)
         row.update(status="converged", error=None)
         row["iterations"] = r.report["total_iterations"]
         row.update(r.probes)
@@ -110,7 +110,8 @@ def run_variant(case, base_dir, overrides, index, fields=None):
     return row
 
 
-def sweep(case, parameters, client=None, *, base_dir=None, fields=None, workers=None):
+def sweep(case, parameters, client=None, *, base_dir=None, fields=None, workers=None,
+          threads=None):
     """Runs the variants of `case` (a path, TOML text or dict) given by `parameters` and
     returns one DataFrame row per variant: its parameters, `status` ("converged", "failed"
     for a failed solve, "error" for a case that cannot be run) and `error`, the Newton
@@ -121,6 +122,8 @@ def sweep(case, parameters, client=None, *, base_dir=None, fields=None, workers=
              tribo installed and the case's mesh file, if any, at the same path)
     workers  without a client, how many variants run at once (default: the CPU count)
     fields   a folder: each variant's result.vtu and history.csv in variant_NNNN/
+    threads  threads per variant: default 1 when variants run side by side (on a cluster
+             or with workers > 1: more would only contend for the cores), else all cores
     """
     if isinstance(case, dict):
         base = copy.deepcopy(case)
@@ -135,12 +138,14 @@ def sweep(case, parameters, client=None, *, base_dir=None, fields=None, workers=
     for v in todo:
         for address, value in v.items():
             set_value(copy.deepcopy(base), address, value)
-    args = [(base, base_dir, v, i, fields) for i, v in enumerate(todo)]
+    n = workers or os.cpu_count() or 1
+    side_by_side = client is not None or n > 1
+    per_variant = threads if threads is not None else (1 if side_by_side else None)
+    args = [(base, base_dir, v, i, fields, per_variant) for i, v in enumerate(todo)]
     if client is not None:
         futures = client.map(run_variant, *zip(*args), pure=False) if args else []
         rows = client.gather(futures)
     else:
-        n = workers or os.cpu_count() or 1
         if n == 1:
             rows = [run_variant(*a) for a in args]
         else:
