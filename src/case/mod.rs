@@ -34,14 +34,15 @@ use std::path::{Path, PathBuf};
 /// Reads a case file; syntax errors and unknown keys name the file, line and valid keys.
 pub fn load(path: &Path) -> Result<(CaseFile, PathBuf)> {
     let text = std::fs::read_to_string(path).map_err(|e| Error::io(path, e))?;
-    let case: CaseFile = toml::from_str(&text).map_err(|e| {
-        Error::parse(
-            path.display().to_string(),
-            e.to_string().trim_end().to_string(),
-        )
-    })?;
+    let case = parse(&text, &path.display().to_string())?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     Ok((case, dir))
+}
+
+/// Parses the text of a case; `source` names it in error messages (a file, or what the text
+/// came from).
+pub fn parse(text: &str, source: &str) -> Result<CaseFile> {
+    toml::from_str(text).map_err(|e| Error::parse(source, e.to_string().trim_end().to_string()))
 }
 
 /// The probes of a case, checked against the mesh (errors name the probe).

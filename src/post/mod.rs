@@ -10,6 +10,7 @@
 //! | `contact_summary.rs` | per pair: nodal contact values, resultants, length, centre, peak, counts |
 //! | `probe.rs` | probes: their nodes, fields (Cauchy, PK2, polar, contact) and values |
 //! | `plot.rs` | dependency-free SVG plots |
+//! | `results/` | results.json's numbers and history.csv of an outcome, in memory |
 //! | `result_vtu.rs` | result fields of a state as VTU, a load history as a .pvd series |
 //! | `stress.rs` | Gauss-point stresses, extrapolation to nodes, nodal averages |
 //! | `vtu.rs` | ParaView .vtu/.pvd writers (raw appended binary, atomic writes) |
@@ -23,5 +24,6 @@ pub mod curve;
 pub mod plot;
 pub mod probe;
 pub mod result_vtu;
+pub mod results;
 pub mod stress;
 pub mod vtu;

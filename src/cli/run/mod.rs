@@ -5,14 +5,12 @@
 //! | `staging.rs` | the output folder written whole in a temporary one, then swapped in |
 //! | `signals.rs` | SIGINT / SIGTERM delete the temporary folder of a run in progress |
 //! | `write.rs` | the files of an outcome and their results.json entries |
-//! | `contact.rs` | per contact pair: results.json entries and history.csv columns |
 //!
 //! results.json has `"status": "converged"`, or `"failed"` with `"failure"` (the time of
 //! the step that failed, the reason, the last converged time): a solve that fails after
 //! some converged steps still writes the files of its last converged state and of its
 //! converged output steps, and exits non-zero.
 
-mod contact;
 pub mod signals;
 mod staging;
 mod write;
@@ -35,12 +33,8 @@ pub fn run(path: &Path, output: Option<&Path>, verbose: bool) -> Result<i32> {
     };
     // before the solve: a folder that cannot be written or replaced is known at once
     let staging = Staging::begin(&out_dir)?;
-    let mut results = json!({
-        "case": path.display().to_string(),
-        "title": case.title,
-        "mesh": {"nodes": mesh.num_nodes(), "cells": mesh.num_cells()},
-        "modelisation": case.model.modelisation.name(),
-    });
+    let mut results = crate::post::results::header(&case, &mesh);
+    results["case"] = json!(path.display().to_string());
     crate::progress::stage(&format!("{} ({} nodes)", path.display(), mesh.num_nodes()));
     let (outcome, failure) = match case::run_keeping(&case, &mesh, verbose) {
         Ok(o) => (Some(o), None),

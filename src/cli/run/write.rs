@@ -1,17 +1,15 @@
 //! The files of a run's outcome: result.vtu and the steps' series, curves, pressures,
 //! tractions, history.csv, and the results.json entries that describe them.
 
-use super::contact::{csv_header, csv_values, hertz_fits, pair_json};
 use crate::case::schema::CaseFile;
-use crate::case::{self, Outcome};
+use crate::case::Outcome;
 use crate::error::{write_atomic, Result};
-use crate::fem::material::Modelisation;
 use crate::mesh::Mesh;
 use crate::post::contact_pressure::surface_tractions;
 use crate::post::plot;
 use crate::post::probe::polar;
 use crate::post::result_vtu::{write_series, write_state, Setting, State};
-use serde_json::{json, Value};
+use serde_json::json;
 use std::path::{Path, PathBuf};
 
 /// Where the files are written (the temporary folder) and where they are listed (the
@@ -44,8 +42,7 @@ pub fn outcome_files(
 ) -> Result<serde_json::Value> {
     let mut files = vec![];
     if case.output.vtu {
-        let materials: Vec<Option<String>> =
-            case.material.iter().map(|m| m.group.clone()).collect();
+        let materials = crate::post::results::material_groups(case);
         let setting = Setting {
             mesh,
             material_groups: &materials,
@@ -53,7 +50,7 @@ pub fn outcome_files(
         write_state(
             &dir.file("result.vtu", &mut files),
             &setting,
-            &final_state(outcome),
+            &crate::post::results::final_state(outcome),
         )?;
         let states: Vec<(f64, State)> = outcome
             .steps
@@ -74,18 +71,8 @@ pub fn outcome_files(
             files.push(dir.shown(&f));
         }
     }
-    let axisymmetric = case.model.modelisation == Modelisation::Axisymmetric;
     let large = outcome.pk2.is_some();
-    // the contact values of each slave node (the first pair's where a node is in several)
-    let mut contact_at: std::collections::HashMap<
-        usize,
-        &crate::post::contact_summary::NodeContact,
-    > = Default::default();
-    for r in outcome.contact.iter().rev() {
-        for c in &r.nodes {
-            contact_at.insert(c.node, c);
-        }
-    }
+    let contact_at = crate::post::results::node_contact(outcome);
     for spec in &case.output.curve {
         let nodes = crate::post::curve::chain(mesh, &spec.group)?;
         let mut text = String::from("s,node,x,y,dx,dy,sixx,siyy,sizz,sixy,vmis");
@@ -232,7 +219,6 @@ pub fn outcome_files(
         )?;
     }
     // Tractions recovered from the nodal stresses on both surfaces, and per-pair figures.
-    let mut contact_json = vec![];
     for (i, (slave, master)) in outcome.contact_surfaces.iter().enumerate() {
         let stem = if n_pairs == 1 {
             "tractions".to_string()
@@ -261,112 +247,12 @@ pub fn outcome_files(
             &dir.file(&format!("{stem}.csv"), &mut files),
             text.as_bytes(),
         )?;
-        let result = &outcome.contact[i];
-        let mut entry = pair_json(&slave.group, &master.group, &result.summary, axisymmetric);
-        if case.output.hertz.is_some() {
-            let mu = outcome.contact_shear.get(i).map_or(0.0, |s| s.0);
-            if let (Value::Object(fits), Some(e)) =
-                (hertz_fits(result, mu, &mesh.coords), entry.as_object_mut())
-            {
-                e.extend(fits);
-            }
-        }
-        contact_json.push(entry);
     }
-    let mut probes = serde_json::Map::new();
-    for (name, v) in &outcome.probes {
-        probes.insert(name.clone(), json!(v));
-    }
-    // reactions summed over the groups of the imposed displacements and motions
-    let mut support_groups: Vec<&str> =
-        case.displacement.iter().map(|d| d.group.as_str()).collect();
-    support_groups.extend(case.rotation.iter().map(|r| r.group.as_str()));
-    let mut seen = std::collections::HashSet::new();
-    support_groups.retain(|g| seen.insert(*g));
-    let mut support_nodes = vec![];
-    for g in &support_groups {
-        support_nodes.push(mesh.node_group(g)?);
-    }
-    let group_reactions = |r: &[f64]| -> Vec<[f64; 2]> {
-        support_nodes
-            .iter()
-            .map(|nodes| {
-                nodes
-                    .iter()
-                    .fold([0.0, 0.0], |a, &n| [a[0] + r[2 * n], a[1] + r[2 * n + 1]])
-            })
-            .collect()
-    };
-    let reactions_json = |r: &[f64]| -> serde_json::Map<String, serde_json::Value> {
-        let mut out = serde_json::Map::new();
-        for (g, v) in support_groups.iter().zip(group_reactions(r)) {
-            out.insert(g.to_string(), json!({"rx": v[0], "ry": v[1]}));
-        }
-        out
-    };
-    let reactions = reactions_json(&outcome.reactions);
-    // per output time: probes and reactions (results.json and history.csv)
-    let mut history = vec![];
-    if case.output.history && !outcome.steps.is_empty() {
-        let mut text = String::from("time");
-        for p in &case.output.probe {
-            text.push_str(&format!(",{}", p.name));
-        }
-        for g in &support_groups {
-            text.push_str(&format!(",rx_{g},ry_{g}"));
-        }
-        for i in 0..outcome.contact_surfaces.len() {
-            text.push_str(&csv_header(i + 1, axisymmetric));
-        }
-        text.push('\n');
-        for st in &outcome.steps {
-            let mut probes = serde_json::Map::new();
-            text.push_str(&st.time.to_string());
-            for (name, v) in &st.probes {
-                probes.insert(name.clone(), json!(v));
-                text.push_str(&format!(",{v}"));
-            }
-            for v in group_reactions(&st.reactions) {
-                text.push_str(&format!(",{},{}", v[0], v[1]));
-            }
-            let mut contact = vec![];
-            for (r, (slave, master)) in st.contact.iter().zip(&outcome.contact_surfaces) {
-                text.push_str(&csv_values(&r.summary));
-                contact.push(pair_json(
-                    &slave.group,
-                    &master.group,
-                    &r.summary,
-                    axisymmetric,
-                ));
-            }
-            text.push('\n');
-            history.push(json!({
-                "time": st.time,
-                "probes": probes,
-                "reactions": reactions_json(&st.reactions),
-                "contact": contact,
-            }));
-        }
+    let summary = crate::post::results::summary(case, mesh, outcome)?;
+    if let Some(text) = &summary.history_csv {
         write_atomic(&dir.file("history.csv", &mut files), text.as_bytes())?;
     }
-    let results = json!({
-        "probes": probes,
-        "reactions": reactions,
-        "history": history,
-        "contact": contact_json,
-        "solver": outcome.report,
-        "files": files,
-    });
+    let mut results = summary.json;
+    results["files"] = json!(files);
     Ok(results)
-}
-
-fn final_state(o: &case::Outcome) -> State<'_> {
-    State {
-        u: &o.u,
-        reactions: &o.reactions,
-        stress: &o.stress,
-        pk2: o.pk2.as_deref(),
-        contact: &o.contact,
-        multipliers: &o.contact_multipliers,
-    }
 }
