@@ -6,6 +6,7 @@
 //! | `signals.rs` | SIGINT / SIGTERM delete the temporary folder of a run in progress |
 //! | `write.rs` | the files of an outcome and their results.json entries |
 //! | `contact.rs` | per contact pair: results.json entries and history.csv columns |
+//! | `rigid.rs` | per rigid surface: its reference point's motion and reaction |
 //!
 //! results.json has `"status": "converged"`, or `"failed"` with `"failure"` (the time of
 //! the step that failed, the reason, the last converged time): a solve that fails after
@@ -13,6 +14,7 @@
 //! converged output steps, and exits non-zero.
 
 mod contact;
+mod rigid;
 pub mod signals;
 mod staging;
 mod write;

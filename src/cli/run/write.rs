@@ -2,6 +2,7 @@
 //! tractions, history.csv, and the results.json entries that describe them.
 
 use super::contact::{csv_header, csv_values, hertz_fits, pair_json};
+use super::rigid;
 use crate::case::schema::CaseFile;
 use crate::case::{self, Outcome};
 use crate::error::{write_atomic, Result};
@@ -242,7 +243,9 @@ pub fn outcome_files(
         let mut text = String::from(
             "surface,node,x,y,pressure_initial,shear_initial,pressure_deformed,shear_deformed\n",
         );
-        for (name, surf) in [("slave", slave), ("master", master)] {
+        // (a rigid master has no stresses)
+        let sides = [("slave", slave), ("master", master)];
+        for (name, surf) in sides.into_iter().filter(|s| !s.1.is_rigid()) {
             let init = surface_tractions(mesh, surf, &outcome.stress, None);
             let def = surface_tractions(mesh, surf, &outcome.stress, Some(&outcome.u));
             let mut rows: Vec<_> = init.iter().zip(&def).collect();
@@ -318,6 +321,7 @@ pub fn outcome_files(
         for i in 0..outcome.contact_surfaces.len() {
             text.push_str(&csv_header(i + 1, axisymmetric));
         }
+        text.push_str(&rigid::csv_header(&outcome.rigid));
         text.push('\n');
         for st in &outcome.steps {
             let mut probes = serde_json::Map::new();
@@ -339,12 +343,14 @@ pub fn outcome_files(
                     axisymmetric,
                 ));
             }
+            text.push_str(&rigid::csv_values(&st.rigid));
             text.push('\n');
             history.push(json!({
                 "time": st.time,
                 "probes": probes,
                 "reactions": reactions_json(&st.reactions),
                 "contact": contact,
+                "rigid": rigid::rigid_json(&st.rigid),
             }));
         }
         write_atomic(&dir.file("history.csv", &mut files), text.as_bytes())?;
@@ -354,6 +360,7 @@ pub fn outcome_files(
         "reactions": reactions,
         "history": history,
         "contact": contact_json,
+        "rigid": rigid::rigid_json(&outcome.rigid),
         "solver": outcome.report,
         "files": files,
     });
