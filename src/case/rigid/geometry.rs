@@ -195,9 +195,14 @@ pub fn augment(case: &CaseFile, mesh: &Mesh) -> Result<Option<Mesh>> {
             }
         }
         if let Some(c) = &spec.circle {
+            // (by default a multiple of 4: vertices at the circle's extreme points, where a
+            // circle set on a flat touches it; a chord there would leave a gap)
             let n = c.segments.unwrap_or_else(|| {
                 let chord = 0.25 * h_min;
-                ((2.0 * PI * c.radius / chord).ceil() as usize).clamp(MIN_SEGMENTS, MAX_SEGMENTS)
+                let n = (2.0 * PI * c.radius / chord).ceil() as usize;
+                n.div_ceil(4)
+                    .saturating_mul(4)
+                    .clamp(MIN_SEGMENTS, MAX_SEGMENTS)
             });
             for k in 0..n {
                 // counter-clockwise: the right-hand normal points out of the disc
