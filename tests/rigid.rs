@@ -221,3 +221,146 @@ initial = "all"
         );
     }
 }
+
+/// The error of a case on the block-and-punch mesh (the case must fail).
+fn error_of(text: &str) -> String {
+    let mesh = block_and_punch(0.5);
+    let c = case(text);
+    match run(&c, &mesh, false) {
+        Ok(_) => panic!("the case ran:\n{text}"),
+        Err(e) => e.to_string(),
+    }
+}
+
+const HELD: &str = r#"
+[[displacement]]
+group = "Bottom"
+dx = 0.0
+dy = 0.0
+"#;
+
+#[test]
+fn bad_rigid_input_is_refused_naming_the_entry() {
+    let contact = "[[contact]]\nslave = \"Top\"\nmaster = \"Punch\"\n";
+    // the edge group without a [[rigid]] entry
+    let e = error_of(&format!("{HELD}{contact}"));
+    assert!(
+        e.contains("edge cell") && e.contains("[[rigid]] entry with its reference point"),
+        "{e}"
+    );
+    // no reference point
+    let e = error_of(&format!("{HELD}[[rigid]]\ngroup = \"Punch\"\n{contact}"));
+    assert!(
+        e.contains("[[rigid]] 'Punch' has no reference point"),
+        "{e}"
+    );
+    // a force and an imposed displacement on the same dof
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\ngroup = \"Punch\"\nreference = [0.5, 1.0]\ndy = -0.001\nfy = -1.0\n{contact}"
+    ));
+    assert!(e.contains("[[rigid]] 'Punch': dy and fy both given"), "{e}");
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\ngroup = \"Punch\"\nreference = [0.5, 1.0]\nrotation = 0.0\nmoment = 1.0\n{contact}"
+    ));
+    assert!(
+        e.contains("[[rigid]] 'Punch': rotation and moment both given"),
+        "{e}"
+    );
+    // a rigid surface as slave
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\ngroup = \"Punch\"\nreference = [0.5, 1.0]\n{contact}\
+         [[contact]]\nslave = \"Punch\"\nmaster = \"Right\"\n"
+    ));
+    assert!(
+        e.contains("[[contact]] 2 (Punch on Right): the slave 'Punch' is the rigid surface [[rigid]] 'Punch'"),
+        "{e}"
+    );
+    // a rigid surface that is the master of no pair
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\nname = \"floor\"\nline = {{ point = [0.0, 0.0], normal = [0.0, 1.0] }}\n\
+         reference = [0.0, 0.0]\n[[rigid]]\ngroup = \"Punch\"\nreference = [0.5, 1.0]\n{contact}"
+    ));
+    assert!(
+        e.contains("[[rigid]] 'floor' is the master of no [[contact]]"),
+        "{e}"
+    );
+    // a group that bounds a body
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\ngroup = \"Top\"\nreference = [0.5, 1.0]\n\
+         [[contact]]\nslave = \"Bottom\"\nmaster = \"Top\"\n"
+    ));
+    assert!(
+        e.contains("[[rigid]] 'Top': edge cell") && e.contains("is a side of the 2D cell"),
+        "{e}"
+    );
+    // a line with neither geometry nor group
+    let e = error_of(&format!(
+        "{HELD}[[rigid]]\nname = \"x\"\nreference = [0.5, 1.0]\n{contact}"
+    ));
+    assert!(
+        e.contains("[[rigid]] 'x': give exactly one of group"),
+        "{e}"
+    );
+    // another entry moving a node of the rigid surface
+    let e = error_of(&format!(
+        "{HELD}[[displacement]]\ngroup = \"Punch\"\ndy = 0.0\n[[rigid]]\ngroup = \"Punch\"\n\
+         reference = [0.5, 1.0]\n{contact}"
+    ));
+    assert!(
+        e.contains("[[displacement]] on 'Punch': node")
+            && e.contains("belongs to the rigid surface"),
+        "{e}"
+    );
+    // a moment (free rotation) with large kinematics
+    let e = error_of(
+        &format!(
+            "[model]\nkinematics = \"large\"\n{HELD}[[rigid]]\ngroup = \"Punch\"\nreference = [0.5, 1.0]\nmoment = 0.0\n{contact}"
+        )
+        ,
+    );
+    assert!(
+        e.contains("[[rigid]] 'Punch': moment makes the rotation an unknown"),
+        "{e}"
+    );
+}
+
+/// An imposed rotation moves the surface rigidly (exact rotation): a punch turned by 0.3
+/// rad about its reference point, away from the block (nothing touches), keeps every
+/// distance between its nodes; its reaction is zero.
+#[test]
+fn imposed_rotation_is_an_exact_rigid_motion() {
+    let mesh = block_and_punch(0.5);
+    let c = case(
+        r#"
+[[displacement]]
+group = "Bottom"
+dx = 0.0
+dy = 0.0
+[[rigid]]
+group = "Punch"
+reference = [0.5, 0.8]
+dy = "0.5*t"
+rotation = 0.3
+[[contact]]
+slave = "Top"
+master = "Punch"
+formulation = "mortar"
+"#,
+    );
+    let out = run(&c, &mesh, false).unwrap();
+    let r = &out.rigid[0];
+    assert_eq!(r.motion, [0.0, 0.5, 0.3]);
+    assert!(r.reaction.iter().all(|v| v.abs() < 1e-12), "{:?}", r);
+    let nodes = mesh.node_group("Punch").unwrap();
+    let (c, s) = (0.3f64.cos(), 0.3f64.sin());
+    for &n in &nodes {
+        let x = mesh.coords[n];
+        let d = [x[0] - 0.5, x[1] - 0.8];
+        let expect = [0.5 + c * d[0] - s * d[1], 0.8 + 0.5 + s * d[0] + c * d[1]];
+        let got = [x[0] + out.u[2 * n], x[1] + out.u[2 * n + 1]];
+        assert!(
+            (got[0] - expect[0]).abs() < 1e-14 && (got[1] - expect[1]).abs() < 1e-14,
+            "node {n}: {got:?} vs {expect:?}"
+        );
+    }
+}
