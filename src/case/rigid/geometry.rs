@@ -72,7 +72,7 @@ fn check_entry(spec: &RigidSpec, what: &str, mesh: &Mesh, in_2d: &[bool]) -> Res
         }
     }
     if let Some(c) = &spec.circle {
-        if !finite(&c.center) || !(c.radius.is_finite() && c.radius > 0.0) {
+        if !(finite(&c.center) && c.radius.is_finite() && c.radius > 0.0) {
             return Err(Error::model(format!(
                 "{what}: circle needs a finite center and a positive radius, got radius {}",
                 c.radius
