@@ -207,6 +207,34 @@ impl DofMap {
         }
     }
 
+    /// Makes dof `d` follow Σ c · u_k over other dofs (`combo`), plus its own imposed value
+    /// g_d when `own_source` (a rigid surface's node: its reference point's dofs, the
+    /// imposed part of its rotation). Each u_k enters as it is: free, imposed or linked.
+    pub fn set_link(&mut self, d: usize, combo: &[(usize, f64)], own_source: bool) {
+        let mut e = LinkExpr::default();
+        for &(k, c) in combo {
+            match self.roles[k] {
+                Role::Free(j) => add_scaled(&mut e.terms, &[(j, 1.0)], c),
+                Role::Fixed => add_scaled(&mut e.sources, &[(k, 1.0)], c),
+                Role::Linked(i) => {
+                    let x = self.exprs[i].clone();
+                    add_scaled(&mut e.terms, &x.terms, c);
+                    add_scaled(&mut e.sources, &x.sources, c);
+                }
+            }
+        }
+        if own_source {
+            add_scaled(&mut e.sources, &[(d, 1.0)], 1.0);
+        }
+        match self.roles[d] {
+            Role::Linked(i) => self.exprs[i] = e,
+            _ => {
+                self.roles[d] = Role::Linked(self.exprs.len());
+                self.exprs.push(e);
+            }
+        }
+    }
+
     /// The free unknowns (with coefficients) that full dof `d` depends on.
     pub fn expand_dof(&self, d: usize, out: &mut Vec<(usize, f64)>) {
         out.clear();

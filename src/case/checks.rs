@@ -106,6 +106,7 @@ pub(super) fn check_functions_used(case: &CaseFile) -> Result<()> {
         .chain(case.pressure.iter().filter_map(|p| p.function.as_ref()))
         .chain(case.traction.iter().filter_map(|t| t.function.as_ref()))
         .chain(case.relation.iter().filter_map(|r| r.function.as_ref()))
+        .chain(case.rigid.iter().filter_map(|r| r.function.as_ref()))
         .collect();
     // (a name with no [[function]] is reported where the loads are built)
     if used

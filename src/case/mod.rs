@@ -6,6 +6,7 @@
 //! | `checks.rs` | every value finite and in range, every key meaningful, before any work |
 //! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
 //! | `pairs.rs` | the contact pairs |
+//! | `rigid/` | rigid surfaces moved by a reference point: mesh, dof links, reactions |
 //! | `solve.rs` | a run: the solve and its outcome, or what a failed one kept |
 //! | `sizes.rs` | memory estimates of generated meshes and of the model, checked before work |
 //! | `ssnp154.rs` | the built-in SSNP154 cases |
@@ -13,13 +14,14 @@
 pub mod checks;
 pub mod loading;
 pub mod pairs;
+pub mod rigid;
 pub mod schema;
 mod sizes;
 pub mod solve;
 pub mod ssnp154;
 
 pub use pairs::build_pairs;
-pub use solve::{run, run_keeping, Failure, Multipliers, Outcome, StepOutcome};
+pub use solve::{run, run_keeping, Failure, Multipliers, Outcome, RigidState, StepOutcome};
 
 use crate::assembly::dofs::{DofMap, Relation};
 use crate::assembly::Assembler;
@@ -232,6 +234,13 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
             used[2 * n + 1] = true;
         }
     }
+    // a rigid surface's reference point: its translation and rotation dofs
+    let rigid = rigid::bodies(case, mesh)?;
+    for b in &rigid {
+        used[2 * b.ref_node] = true;
+        used[2 * b.ref_node + 1] = true;
+        used[2 * b.rot_node] = true;
+    }
     let loading::Built {
         fixed,
         rhs,
@@ -273,7 +282,8 @@ pub fn build_problem<'m>(case: &CaseFile, mesh: &'m Mesh) -> Result<SolidProblem
             name,
         });
     }
-    let dofs = DofMap::new(&used, &fixed, &relations)?;
+    let mut dofs = DofMap::new(&used, &fixed, &relations)?;
+    rigid::link(&mut dofs, mesh, &rigid);
     // Without contact the matrix is SPD: Cholesky reads the lower triangle only.
     let asm = Assembler::new(mesh, cells, models, dofs, case.contact.is_empty())?;
     Ok(SolidProblem::with_loading(mesh, asm, loading))

@@ -216,6 +216,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
         }
     }
     let bodies = crate::mesh::topology::node_bodies(mesh);
+    let rigid = super::rigid::bodies(case, mesh)?;
     for (i, c) in case.contact.iter().enumerate() {
         let what = format!("[[contact]] {} ({} on {})", i + 1, c.slave, c.master);
         if c.slave == c.master {
@@ -223,10 +224,20 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 "{what}: slave and master must be different groups"
             )));
         }
+        if let Some(b) = rigid.iter().find(|b| b.group == c.slave) {
+            return Err(Error::model(format!(
+                "{what}: the slave '{}' is the rigid surface {}: a rigid surface can only be \
+                 the master of a pair (the multipliers live on a deformable slave)",
+                c.slave, b.what
+            )));
+        }
         let slave = Surface::from_group(mesh, &c.slave, "slave")
             .map_err(|e| Error::model(format!("{what}: {e}")))?;
-        let master = Surface::from_group(mesh, &c.master, "master")
-            .map_err(|e| Error::model(format!("{what}: {e}")))?;
+        let master = match rigid.iter().find(|b| b.group == c.master) {
+            Some(b) => Surface::rigid(mesh, &c.master, b.made, &slave.nodes),
+            None => Surface::from_group(mesh, &c.master, "master"),
+        }
+        .map_err(|e| Error::model(format!("{what}: {e}")))?;
         // Two edge groups of one connected mesh (a body cut along a line, bodies sharing
         // nodes) may be in contact; a node of both surfaces (where a cut ends) would be in
         // contact with itself, its gap zero whatever the motion and its multiplier free: it
@@ -378,8 +389,13 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             "point-to-segment" | "node-to-segment" => {}
             "mortar" => {
                 one_body()?;
-                let (mut slave, mut master, _) =
-                    crate::contact::mortar::multiplier_side(mesh, slave, master);
+                // (a rigid master keeps the multipliers on the deformable slave)
+                let (mut slave, mut master) = if master.is_rigid() {
+                    (slave, master)
+                } else {
+                    let (s, m, _) = crate::contact::mortar::multiplier_side(mesh, slave, master);
+                    (s, m)
+                };
                 // Across a cut, the multipliers go on the lip finer at the shared node: the
                 // shared node carries none, and the constant pressure stays in the weak
                 // space only where the multiplier side's cell there lies within the other's
@@ -427,7 +443,13 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
                 let of = |s: &Surface| -> Vec<f64> {
                     s.parent.iter().map(|&p| compliance[p]).collect()
                 };
-                mortar.compliance = (of(&mortar.slave), of(&mortar.master));
+                // (a rigid master: no compliance, the interface normal is its own)
+                let master_compliance = if mortar.master.is_rigid() {
+                    vec![0.0; mortar.master.cells.len()]
+                } else {
+                    of(&mortar.master)
+                };
+                mortar.compliance = (of(&mortar.slave), master_compliance);
                 // a micro-strain of the softest body: below it a pressure is round-off
                 mortar.pressure_floor = 1e-6 * e_min;
                 // exclude names slave nodes; where the multipliers went to the master

@@ -61,6 +61,9 @@ pub struct CaseFile {
     pub relation: Vec<RelationSpec>,
     #[serde(default)]
     pub contact: Vec<ContactSpec>,
+    /// Rigid surfaces (masters of contact pairs) moved by a reference point.
+    #[serde(default)]
+    pub rigid: Vec<RigidSpec>,
     #[serde(default)]
     pub solver: SolverSpec,
     #[serde(default)]
@@ -203,6 +206,61 @@ pub struct RotationSpec {
     #[serde(default)]
     pub dy: f64,
     pub function: Option<String>,
+}
+
+/// A rigid surface: an edge group of the mesh that bounds no 2D cell, or a line or a
+/// circle given here, moved as a whole by its reference point (ux, uy, rotation). Each of
+/// the three is imposed (`dx`, `dy`, `rotation`), driven by a force (`fx`, `fy`, `moment`:
+/// the point's dof is then an unknown), or else held at 0.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct RigidSpec {
+    /// The name a [[contact]] master refers to (for `group`: the group's name by default).
+    pub name: Option<String>,
+    /// An edge group of the mesh (Seg2/Seg3 cells of no 2D cell).
+    pub group: Option<String>,
+    pub line: Option<LineSpec>,
+    pub circle: Option<CircleSpec>,
+    /// The reference point, or `reference_node`: a one-node group of no 2D cell.
+    #[serde(default, deserialize_with = "opt_pair")]
+    pub reference: Option<[f64; 2]>,
+    pub reference_node: Option<String>,
+    /// Imposed motion of the reference point (numbers or expressions of t).
+    pub dx: Option<Value>,
+    pub dy: Option<Value>,
+    /// Radians, counter-clockwise.
+    pub rotation: Option<Value>,
+    /// Force and moment (counter-clockwise) on the reference point.
+    pub fx: Option<Value>,
+    pub fy: Option<Value>,
+    pub moment: Option<Value>,
+    /// Time function scaling every value (default: f(t) = t).
+    pub function: Option<String>,
+}
+
+/// A straight rigid line through `point`; `normal` points out of the rigid body, toward
+/// the bodies it touches.
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineSpec {
+    #[serde(deserialize_with = "pair")]
+    pub point: [f64; 2],
+    #[serde(deserialize_with = "pair")]
+    pub normal: [f64; 2],
+}
+
+/// A rigid disc (`inside = false`, the default: contact on its outside) or a rigid bore
+/// (`inside = true`), as a polygon of `segments` chords (default: chords of a quarter of
+/// the shortest slave cell, at least 360).
+#[derive(Clone, Debug, Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct CircleSpec {
+    #[serde(deserialize_with = "pair")]
+    pub center: [f64; 2],
+    pub radius: f64,
+    pub segments: Option<usize>,
+    #[serde(default)]
+    pub inside: bool,
 }
 
 #[derive(Clone, Debug, Deserialize, Serialize)]

@@ -2,6 +2,7 @@
 //! final state. A solve that fails after some converged steps still hands back what they
 //! gave (`Failure::partial`), so that a caller can keep the results it has.
 
+pub use super::rigid::RigidState;
 use super::schema::CaseFile;
 use super::{build_pairs, build_problem, loading, probes};
 use crate::contact::problem::ContactProblem;
@@ -41,6 +42,8 @@ pub struct Outcome {
     /// The same for the second Piola–Kirchhoff stress (large kinematics only).
     pub pk2: Option<Vec<[f64; 4]>>,
     pub probes: Vec<(String, f64)>,
+    /// Per `[[rigid]]`: the reference point's motion and reaction.
+    pub rigid: Vec<RigidState>,
 }
 
 /// The fields of one converged load step.
@@ -55,6 +58,34 @@ pub struct StepOutcome {
     pub contact_shear: Vec<(f64, Vec<(usize, f64)>)>,
     pub contact_multipliers: Vec<Multipliers>,
     pub contact: Vec<PairResult>,
+    pub rigid: Vec<RigidState>,
+}
+
+impl StepOutcome {
+    /// Cuts the nodal fields to the first `nodes` nodes (those of the given mesh).
+    fn cut(&mut self, nodes: usize) {
+        self.u.truncate(2 * nodes);
+        self.reactions.truncate(2 * nodes);
+        self.stress.truncate(nodes);
+        if let Some(p) = &mut self.pk2 {
+            p.truncate(nodes);
+        }
+    }
+}
+
+impl Outcome {
+    /// `StepOutcome::cut` of the final state and of every step.
+    fn cut(&mut self, nodes: usize) {
+        self.u.truncate(2 * nodes);
+        self.reactions.truncate(2 * nodes);
+        self.stress.truncate(nodes);
+        if let Some(p) = &mut self.pk2 {
+            p.truncate(nodes);
+        }
+        for s in &mut self.steps {
+            s.cut(nodes);
+        }
+    }
 }
 
 /// Nodal stresses, probes and the fields of the problem's current state.
@@ -100,7 +131,16 @@ fn step_outcome(
     for p in probes(case, mesh)? {
         values.push((p.name.clone(), p.value(&fields)?));
     }
+    let rigid = super::rigid::states(
+        &super::rigid::bodies(case, mesh)?,
+        mesh,
+        &solid.u,
+        &solid.residual_full,
+        &solid.fext,
+        large,
+    );
     Ok(StepOutcome {
+        rigid,
         time,
         probes: values,
         u: solid.u.clone(),
@@ -158,12 +198,33 @@ pub fn run(case: &CaseFile, mesh: &Mesh, verbose: bool) -> Result<Outcome> {
     run_keeping(case, mesh, verbose).map_err(|f| f.error)
 }
 
-/// `run` whose failure keeps the converged steps (see `Failure`).
+/// `run` whose failure keeps the converged steps (see `Failure`). With rigid surfaces the
+/// solve is on the mesh with their edges and reference nodes added (`rigid::augment`); the
+/// nodal fields handed back are cut to the given mesh's nodes.
 pub fn run_keeping(
     case: &CaseFile,
     mesh: &Mesh,
     verbose: bool,
 ) -> std::result::Result<Outcome, Failure> {
+    let augmented = super::rigid::augment(case, mesh)?;
+    let Some(solved_on) = &augmented else {
+        return solve_on(case, mesh, verbose);
+    };
+    let nodes = mesh.num_nodes();
+    solve_on(case, solved_on, verbose)
+        .map(|mut o| {
+            o.cut(nodes);
+            o
+        })
+        .map_err(|mut f| {
+            if let Some(p) = &mut f.partial {
+                p.cut(nodes);
+            }
+            f
+        })
+}
+
+fn solve_on(case: &CaseFile, mesh: &Mesh, verbose: bool) -> std::result::Result<Outcome, Failure> {
     let mut problem = build_problem(case, mesh)?;
     // Probes are checked before the (possibly long) solve.
     for c in &case.output.curve {
@@ -355,6 +416,7 @@ fn final_outcome(
         stress: last.stress,
         pk2: last.pk2,
         probes: last.probes,
+        rigid: last.rigid,
     })
 }
 
@@ -368,10 +430,15 @@ fn supported_slave_nodes(
     problem: &SolidProblem,
     pairs: &[Box<dyn crate::contact::pair::ContactPair>],
 ) -> Result<()> {
-    use crate::assembly::dofs::Role;
-    let roles = &problem.asm.dofs.roles;
-    let fixed =
-        |n: usize| matches!(roles[2 * n], Role::Fixed) && matches!(roles[2 * n + 1], Role::Fixed);
+    // (a dof that depends on no unknown: imposed, or linked to imposed ones only, as the
+    // nodes of a rigid surface whose motion is imposed)
+    let dofs = &problem.asm.dofs;
+    let held = |d: usize| {
+        let mut on = vec![];
+        dofs.expand_dof(d, &mut on);
+        on.is_empty()
+    };
+    let fixed = |n: usize| held(2 * n) && held(2 * n + 1);
     let coords = &problem.mesh.coords;
     for (i, (p, c)) in pairs.iter().zip(&case.contact).enumerate() {
         let master = &p.surfaces().1.nodes;

@@ -68,6 +68,7 @@ pub fn glued_case(mesh: MeshSpec, kinematics: Kinematics) -> CaseFile {
         pressure: vec![],
         traction: vec![],
         contact: vec![],
+        rigid: vec![],
         relation: vec![RelationSpec {
             name: "DY(B) = DY(C)".into(),
             terms: vec![

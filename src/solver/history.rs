@@ -138,6 +138,14 @@ pub enum Imposed {
         dofs: Vec<(usize, [f64; 2])>,
         source: TimeExpr,
     },
+    /// The rotation part of a rigid surface's motion, (R(θ) − I)(X − center) at each
+    /// (node, X), θ being the imposed value of dof `angle` at t (so this entry comes after
+    /// the one imposing it); the translation is linked to the reference point's dofs.
+    Follow {
+        nodes: Vec<(usize, [f64; 2])>,
+        center: [f64; 2],
+        angle: usize,
+    },
 }
 
 /// The displacement of the point `x` under a rotation by `angle` (radians,
@@ -285,6 +293,18 @@ impl Loading {
                         out[d] = v;
                     }
                 }
+                Imposed::Follow {
+                    nodes,
+                    center,
+                    angle,
+                } => {
+                    let theta = out[*angle];
+                    for &(n, x) in nodes {
+                        let u = rigid_displacement(x, *center, theta, [0.0; 2]);
+                        out[2 * n] = u[0];
+                        out[2 * n + 1] = u[1];
+                    }
+                }
             }
         }
         let base = dofs.num_dofs();
@@ -310,7 +330,7 @@ impl Loading {
                 Imposed::Scaled { function, .. } | Imposed::Rigid { function, .. } => {
                     Some(function)
                 }
-                Imposed::Field { .. } => None,
+                Imposed::Field { .. } | Imposed::Follow { .. } => None,
             }))
             .chain(&self.relation_functions)
             .flat_map(|f| f.breakpoints())

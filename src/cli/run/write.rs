@@ -228,7 +228,9 @@ pub fn outcome_files(
         let mut text = String::from(
             "surface,node,x,y,pressure_initial,shear_initial,pressure_deformed,shear_deformed\n",
         );
-        for (name, surf) in [("slave", slave), ("master", master)] {
+        // (a rigid master has no stresses)
+        let sides = [("slave", slave), ("master", master)];
+        for (name, surf) in sides.into_iter().filter(|s| !s.1.is_rigid()) {
             let init = surface_tractions(mesh, surf, &outcome.stress, None);
             let def = surface_tractions(mesh, surf, &outcome.stress, Some(&outcome.u));
             let mut rows: Vec<_> = init.iter().zip(&def).collect();

@@ -6,8 +6,10 @@
 //! | file | what |
 //! |---|---|
 //! | `contact.rs` | per contact pair: results.json entries and history.csv columns |
+//! | `rigid.rs` | per rigid surface: its reference point's motion and reaction |
 
 pub mod contact;
+pub mod rigid;
 
 use crate::case::schema::CaseFile;
 use crate::case::Outcome;
@@ -92,6 +94,7 @@ pub fn summary(case: &CaseFile, mesh: &Mesh, outcome: &Outcome) -> Result<Summar
         for i in 0..outcome.contact_surfaces.len() {
             text.push_str(&csv_header(i + 1, axisymmetric));
         }
+        text.push_str(&rigid::csv_header(&outcome.rigid));
         text.push('\n');
         for st in &outcome.steps {
             let mut probes = Map::new();
@@ -113,12 +116,14 @@ pub fn summary(case: &CaseFile, mesh: &Mesh, outcome: &Outcome) -> Result<Summar
                     axisymmetric,
                 ));
             }
+            text.push_str(&rigid::csv_values(&st.rigid));
             text.push('\n');
             history.push(json!({
                 "time": st.time,
                 "probes": probes,
                 "reactions": reactions_json(&st.reactions),
                 "contact": contact,
+                "rigid": rigid::rigid_json(&st.rigid),
             }));
         }
         history_csv = Some(text);
@@ -129,6 +134,7 @@ pub fn summary(case: &CaseFile, mesh: &Mesh, outcome: &Outcome) -> Result<Summar
             "reactions": reactions,
             "history": history,
             "contact": contact_json,
+            "rigid": rigid::rigid_json(&outcome.rigid),
             "solver": outcome.report,
         }),
         history_csv,
