@@ -82,6 +82,11 @@ pub trait Nonlinear {
     fn active_set_resolves(&self) -> bool {
         false
     }
+    /// Whether corrections that make the residual worse are shortened by the line search
+    /// (see line_search.rs).
+    fn line_search(&self) -> bool {
+        true
+    }
     /// Whether a correction that raises the residual without any status change should be
     /// cut back (semi-smooth terms such as friction, which can cycle).
     fn backtracking(&self) -> bool {
@@ -544,7 +549,10 @@ pub fn solve_into(
             // step's last few Newton points is shortened, each trial point with its own
             // statuses. (Not where the friction backtracking above already applies.)
             let mut step_length = None;
-            if let (Some(dx), Some(reference), false) = (&last_dx, merits.reference(), resolve) {
+            let searching = problem.line_search();
+            if let (Some(dx), Some(reference), false, true) =
+                (&last_dx, merits.reference(), resolve, searching)
+            {
                 let friction_handled = backtracking && changes == 0;
                 // (not after an active-set re-solve: its correction meets its linearised
                 // complementarity with the new statuses, shortening it leaves them, and

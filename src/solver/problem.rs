@@ -298,6 +298,12 @@ impl Nonlinear for SolidProblem<'_> {
         self.set_state(x, lambda, with_tangent)?;
         Ok(self.finish_residual(None, r))
     }
+    // (bodies alone: a rotation imposed in large steps made the line search stall,
+    // tests/history.rs; their Newton is plain)
+    fn line_search(&self) -> bool {
+        false
+    }
+
     fn matrix(&self) -> &SparseMatrix {
         &self.asm.matrix
     }
