@@ -964,43 +964,56 @@ impl PointToSegment {
             return;
         }
         self.pattern_sent.set(Some(self.candidates_generation));
+        // A point reads its slave cell and one master cell with the cells next to it (the
+        // smoothed normal's vertex normals): the pattern couples the slave cell's dofs and
+        // multipliers with each candidate's stencil, and each stencil with itself, not every
+        // candidate with every other (a long slave cell far from the contact zone has
+        // hundreds of small master cells within reach: their clique made the pattern, and
+        // its memory, grow as the square of the refinement).
+        let nm = self.mult_nodes.len();
+        let mut stencil: Vec<usize> = vec![];
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
-            let mut dofs: Vec<usize> = vec![];
             // a slave cell with no master cell within reach has no coupling (yet)
+            let mut own: Vec<usize> = vec![];
             if !self.candidates[ic].is_empty() {
                 for &n in mesh.cell_nodes(sc) {
-                    dofs.extend([2 * n, 2 * n + 1]);
+                    own.extend([2 * n, 2 * n + 1]);
                 }
             }
-            for &im in &self.candidates[ic] {
-                for &n in mesh.cell_nodes(self.master.cells[im]) {
-                    dofs.extend([2 * n, 2 * n + 1]);
-                }
-            }
-            dofs.sort_unstable();
-            dofs.dedup();
-            let nm = self.mult_nodes.len();
-            let mut mults: Vec<usize> = mesh
+            let mults: Vec<usize> = mesh
                 .cell_nodes(sc)
                 .iter()
                 .map(|n| ndof + mult_base + self.mult_of[n])
                 .collect();
             if self.opts.friction.is_some() {
                 let friction: Vec<usize> = mults.iter().map(|m| m + nm).collect();
-                mults.extend(friction);
+                own.extend(friction);
             }
-            for &r in &dofs {
-                for &cc in &dofs {
-                    k.add(r, cc, 0.0);
-                }
-                for &m in &mults {
-                    k.add(r, m, 0.0);
-                    k.add(m, r, 0.0);
+            own.extend(mults);
+            for &r in &own {
+                for &c in &own {
+                    k.add(r, c, 0.0);
                 }
             }
-            for &m1 in &mults {
-                for &m2 in &mults {
-                    k.add(m1, m2, 0.0);
+            for &im in &self.candidates[ic] {
+                stencil.clear();
+                for &n in mesh.cell_nodes(self.master.cells[im]) {
+                    for &jm in self.master_cells_of_node.get(&n).into_iter().flatten() {
+                        for &m in mesh.cell_nodes(self.master.cells[jm]) {
+                            stencil.extend([2 * m, 2 * m + 1]);
+                        }
+                    }
+                }
+                stencil.sort_unstable();
+                stencil.dedup();
+                for &r in &stencil {
+                    for &c in &stencil {
+                        k.add(r, c, 0.0);
+                    }
+                    for &c in &own {
+                        k.add(r, c, 0.0);
+                        k.add(c, r, 0.0);
+                    }
                 }
             }
         }
