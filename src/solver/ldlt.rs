@@ -138,15 +138,32 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
             }
         }
     }
-    for list in &mut coupled {
+    // each primal unknown's multipliers, then its neighbours merged with theirs through a
+    // marker (not by appending every clique and deduplicating: a multiplier couples with
+    // about a hundred unknowns on a quadratic interface, and the appended cliques took
+    // 240 MB on SSNP154 D at 92k unknowns)
+    let mut mults_of: Vec<Vec<usize>> = vec![vec![]; np];
+    for (m, list) in coupled.iter_mut().enumerate() {
         list.sort_unstable();
         list.dedup();
         for &i in list.iter() {
-            adj[i].extend_from_slice(list);
+            mults_of[i].push(m);
         }
     }
+    let mut mark = vec![usize::MAX; np];
     for (j, list) in adj.iter_mut().enumerate() {
         list.push(j);
+        for &i in list.iter() {
+            mark[i] = j;
+        }
+        for &m in &mults_of[j] {
+            for &i in &coupled[m] {
+                if mark[i] != j {
+                    mark[i] = j;
+                    list.push(i);
+                }
+            }
+        }
         list.sort_unstable();
         list.dedup();
     }
