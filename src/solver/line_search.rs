@@ -12,7 +12,6 @@
 //! the load stepping instead (the last resort).
 
 use super::newton::Nonlinear;
-use super::problem::Norms;
 use crate::error::Result;
 
 /// Newton points in a row that do not lower the step's best merit, line searches having
@@ -56,19 +55,12 @@ impl Merits {
     }
 }
 
-/// What a line search did.
-pub struct Searched {
-    /// The fraction of the correction kept.
-    pub alpha: f64,
-    /// Status changes at the chosen point against the statuses of the full correction's.
-    pub changes: usize,
-}
-
 /// The full correction x0 + dx (the current x, evaluated: `full`) raised the merit above
 /// `reference`: tries x0 + α dx for α = 1/2, 1/4, …, each with its own statuses, and keeps
 /// the first that decreases the merit enough, or the best point tried when none does (the
-/// full one included). The problem is left at the kept point, its statuses updated and the
-/// residual r evaluated there (without tangent); returns None when the full step stays.
+/// full one included). Returns the fraction α kept, x moved there and the problem's
+/// statuses updated for it (the caller evaluates it, with its tangent); None when the full
+/// step stays (x, its statuses and r as they were).
 pub fn backtrack(
     problem: &mut dyn Nonlinear,
     x: &mut [f64],
@@ -77,7 +69,7 @@ pub fn backtrack(
     r: &mut [f64],
     full: f64,
     reference: f64,
-) -> Result<Option<(Searched, Norms)>> {
+) -> Result<Option<f64>> {
     let mut best = (1.0, full);
     let mut alpha = 1.0;
     let mut trial = x.to_vec();
@@ -89,21 +81,20 @@ pub fn backtrack(
             *t -= (alpha - next) * d;
         }
         alpha = next;
-        let changes = problem.update_status(&trial, lambda)?;
-        let norms = problem.evaluate(&trial, lambda, r, false)?;
-        let m = norms.relative();
+        problem.update_status(&trial, lambda)?;
+        let m = problem.evaluate(&trial, lambda, r, false)?.relative();
         if !m.is_finite() {
             continue;
         }
         if m <= (1.0 - ARMIJO * alpha) * reference {
-            accepted = Some((alpha, changes, norms));
+            accepted = Some(alpha);
             break;
         }
         if m < best.1 {
             best = (alpha, m);
         }
     }
-    let (alpha, changes, norms) = match accepted {
+    let alpha = match accepted {
         Some(a) => a,
         None if best.0 == 1.0 => {
             // back to the full correction and its statuses
@@ -116,10 +107,10 @@ pub fn backtrack(
             for (t, (xi, d)) in trial.iter_mut().zip(x.iter().zip(dx)) {
                 *t = xi - (1.0 - a) * d;
             }
-            let changes = problem.update_status(&trial, lambda)?;
-            (a, changes, problem.evaluate(&trial, lambda, r, false)?)
+            problem.update_status(&trial, lambda)?;
+            a
         }
     };
     x.copy_from_slice(&trial);
-    Ok(Some((Searched { alpha, changes }, norms)))
+    Ok(Some(alpha))
 }

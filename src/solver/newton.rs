@@ -566,14 +566,14 @@ pub fn solve_into(
                     && norms.relative() > reference
                 {
                     let full = norms.relative();
-                    if let Some((s, _)) = line_search::backtrack(
+                    if let Some(alpha) = line_search::backtrack(
                         problem, &mut x, dx, lambda, &mut r, full, reference,
                     )? {
-                        // the kept point's tangent (its residual as the search left it)
+                        // the kept point's residual and tangent
                         norms = problem.evaluate(&x, lambda, &mut r, true)?;
                         frozen = false;
                         chord = false;
-                        step_length = Some(s.alpha);
+                        step_length = Some(alpha);
                     }
                 }
             }
