@@ -268,11 +268,12 @@ mod tests {
 
     #[test]
     fn balance_is_the_least_balanced_refinement() {
-        // trees refined deep towards a few points (strongly unbalanced), 3 × 2 roots
+        // trees refined deep towards points next to the sides of root cells (the finest
+        // leaves there touch a root: strongly unbalanced), 3 × 2 roots
         let targets: [&[(f64, f64)]; 3] = [
-            &[(0.0, 0.0)],
-            &[(1.3, 0.7), (2.99, 1.99)],
-            &[(0.5, 1.0), (2.0, 0.25), (1.75, 1.5)],
+            &[(1.0001, 0.5)],
+            &[(1.999, 1.3), (0.5, 1.001)],
+            &[(0.0001, 1.999), (2.5, 0.999), (1.75, 1.5)],
         ];
         for pts in targets {
             let mut tree = Quadtree::new(3, 2, 1.0);
