@@ -59,11 +59,13 @@ impl MeshBuilder {
     }
 
     pub fn add_to_cell_group(&mut self, group: &str, cell: usize) {
-        self.mesh
-            .cell_groups
-            .entry(group.to_string())
-            .or_default()
-            .push(cell);
+        // no String allocated per cell once the group exists
+        match self.mesh.cell_groups.get_mut(group) {
+            Some(cells) => cells.push(cell),
+            None => {
+                self.mesh.cell_groups.insert(group.to_string(), vec![cell]);
+            }
+        }
     }
 
     pub fn add_to_node_group(&mut self, group: &str, node: usize) {

@@ -14,6 +14,7 @@
 //! | `compare.rs` | are two meshes the same (nodes, cells, groups)? |
 //! | `refine.rs` | uniform refinement: every cell split n × n, groups kept (`tribo mesh refine`) |
 //! | `quadtree.rs` | balanced quadtree → conforming graded quad/triangle cells |
+//! | `fasthash.rs` | a fast hasher for the generators' integer-keyed maps |
 //! | `generate.rs` | built-in meshes: SSNP154 geometry, rectangles, rings |
 //!
 //! Invariants of a finished `Mesh`: every node index is in range, every 2D cell is
@@ -23,6 +24,7 @@ mod builder;
 pub mod cell;
 pub mod compare;
 mod families;
+pub(crate) mod fasthash;
 pub mod generate;
 pub mod gmsh;
 pub mod gmsh_write;
@@ -128,13 +130,24 @@ impl Mesh {
             return Ok(nodes.clone());
         }
         let cells = self.cell_group(name)?;
-        let mut nodes: Vec<usize> = cells
-            .iter()
-            .flat_map(|&c| self.cell_nodes(c).iter().copied())
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        Ok(nodes)
+        let listed: usize = cells.iter().map(|&c| self.cell_nodes(c).len()).sum();
+        if listed < self.num_nodes() / 16 {
+            let mut nodes: Vec<usize> = cells
+                .iter()
+                .flat_map(|&c| self.cell_nodes(c).iter().copied())
+                .collect();
+            nodes.sort_unstable();
+            nodes.dedup();
+            return Ok(nodes);
+        }
+        // a large group: marking is linear where sorting its node list is not
+        let mut member = vec![false; self.num_nodes()];
+        for &c in cells {
+            for &n in self.cell_nodes(c) {
+                member[n] = true;
+            }
+        }
+        Ok((0..member.len()).filter(|&n| member[n]).collect())
     }
 
     /// The single node of a group that must hold exactly one node (e.g. B, C, Force).

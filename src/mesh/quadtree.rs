@@ -3,35 +3,51 @@
 //! (one hanging mid-side node per side at most, thanks to the balance) becomes a fan of
 //! right-isosceles triangles around its centre, so every cell keeps angles of 45° or more
 //! in the parameter plane. Used by the SSNP154 generator.
-
-use std::collections::{HashMap, HashSet};
+//!
+//! The tree is an arena of cells with child links, so finding the leaf over a point is a
+//! descent of array lookups (a hash set of leaves made the 525k-node SSNP154 mesh spend
+//! 36 % of its time in `balance` and 17 % hashing). `balance` visits leaves once, finest
+//! level first: splits then only make coarser leaves, still to be visited.
 
 /// Lattice resolution: parameter coordinates are integers in units of root / 2^DEPTH.
 const DEPTH: u32 = 26;
 
+/// A cell: (level, i, j), the square [i, i + 1] × [j, j + 1] × root / 2^level.
 pub type Leaf = (u32, u64, u64);
+
+const NO_KIDS: usize = usize::MAX;
+
+struct Node {
+    cell: Leaf,
+    /// Index of the first of the four children (i + 2 j order), NO_KIDS for a leaf.
+    kids: usize,
+}
 
 pub struct Quadtree {
     /// Number of root cells in each direction and the root cell size (parameter units).
     pub nx: u64,
     pub ny: u64,
     pub root: f64,
-    pub leaves: HashSet<Leaf>,
+    /// Roots first (root (i, j) at i·ny + j), then children four at a time.
+    nodes: Vec<Node>,
 }
 
 impl Quadtree {
     pub fn new(nx: u64, ny: u64, root: f64) -> Self {
-        let mut leaves = HashSet::new();
+        let mut nodes = vec![];
         for i in 0..nx {
             for j in 0..ny {
-                leaves.insert((0, i, j));
+                nodes.push(Node {
+                    cell: (0, i, j),
+                    kids: NO_KIDS,
+                });
             }
         }
         Quadtree {
             nx,
             ny,
             root,
-            leaves,
+            nodes,
         }
     }
 
@@ -41,40 +57,73 @@ impl Quadtree {
         (i as f64 * s, j as f64 * s, s)
     }
 
+    fn leaf_ids(&self) -> impl Iterator<Item = usize> + '_ {
+        (0..self.nodes.len()).filter(|&n| self.nodes[n].kids == NO_KIDS)
+    }
+
+    pub fn num_leaves(&self) -> usize {
+        // every split turns one leaf into four
+        let roots = (self.nx * self.ny) as usize;
+        roots + 3 * (self.nodes.len() - roots) / 4
+    }
+
+    /// The leaves, sorted.
+    pub fn leaves(&self) -> Vec<Leaf> {
+        let mut out: Vec<Leaf> = self.leaf_ids().map(|n| self.nodes[n].cell).collect();
+        out.sort_unstable();
+        out
+    }
+
     /// Splits leaves while `split(leaf)` says so (at most `max_level`).
     pub fn refine(&mut self, max_level: u32, split: &dyn Fn(&Quadtree, Leaf) -> bool) {
-        let mut todo: Vec<Leaf> = self.leaves.iter().copied().collect();
-        while let Some(leaf) = todo.pop() {
-            if leaf.0 < max_level && self.leaves.contains(&leaf) && split(self, leaf) {
-                todo.extend(self.split(leaf));
+        let mut todo: Vec<usize> = self.leaf_ids().collect();
+        while let Some(n) = todo.pop() {
+            let leaf = self.nodes[n].cell;
+            if leaf.0 < max_level && split(self, leaf) {
+                todo.extend(self.split_node(n));
             }
         }
     }
 
-    pub fn split(&mut self, (l, i, j): Leaf) -> [Leaf; 4] {
-        self.leaves.remove(&(l, i, j));
-        let kids = [
-            (l + 1, 2 * i, 2 * j),
-            (l + 1, 2 * i + 1, 2 * j),
-            (l + 1, 2 * i + 1, 2 * j + 1),
-            (l + 1, 2 * i, 2 * j + 1),
-        ];
-        for k in kids {
-            self.leaves.insert(k);
+    fn split_node(&mut self, n: usize) -> [usize; 4] {
+        debug_assert_eq!(self.nodes[n].kids, NO_KIDS);
+        let (l, i, j) = self.nodes[n].cell;
+        let first = self.nodes.len();
+        self.nodes[n].kids = first;
+        for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+            self.nodes.push(Node {
+                cell: (l + 1, 2 * i + di, 2 * j + dj),
+                kids: NO_KIDS,
+            });
         }
-        kids
+        [first, first + 1, first + 2, first + 3]
     }
 
-    /// The leaf that contains the same-level cell (l, i, j), if it is that cell or coarser;
-    /// None if the cell is outside the domain or subdivided further.
-    pub fn covering(&self, l: u32, i: i64, j: i64) -> Option<Leaf> {
+    /// Splits a leaf in four (nothing if it is not a leaf).
+    pub fn split(&mut self, (l, i, j): Leaf) {
+        if let Some(n) = self.locate(l, i as i64, j as i64) {
+            if self.nodes[n].cell.0 == l {
+                self.split_node(n);
+            }
+        }
+    }
+
+    /// The node of the leaf that contains the same-level cell (l, i, j), if it is that cell
+    /// or coarser; None if the cell is outside the domain or subdivided further.
+    fn locate(&self, l: u32, i: i64, j: i64) -> Option<usize> {
         if i < 0 || j < 0 || (i as u64) >= self.nx << l || (j as u64) >= self.ny << l {
             return None;
         }
-        (0..=l)
-            .rev()
-            .map(|lc| (lc, (i as u64) >> (l - lc), (j as u64) >> (l - lc)))
-            .find(|c| self.leaves.contains(c))
+        let (i, j) = (i as u64, j as u64);
+        let mut n = ((i >> l) * self.ny + (j >> l)) as usize;
+        for shift in (0..l).rev() {
+            let kids = self.nodes[n].kids;
+            if kids == NO_KIDS {
+                return Some(n);
+            }
+            n = kids + ((i >> shift) & 1) as usize + 2 * ((j >> shift) & 1) as usize;
+        }
+        (self.nodes[n].kids == NO_KIDS).then_some(n)
     }
 
     /// Whether the same-level neighbour cell across a side is subdivided (finer leaves).
@@ -83,44 +132,51 @@ impl Quadtree {
         if ni < 0 || nj < 0 || (ni as u64) >= self.nx << l || (nj as u64) >= self.ny << l {
             return false;
         }
-        self.covering(l, ni, nj).is_none()
+        self.locate(l, ni, nj).is_none()
     }
 
-    /// Splits leaves until neighbours differ by at most one level.
+    /// Splits leaves until side neighbours differ by at most one level: the least such
+    /// refinement (every split is forced by a leaf two or more levels finer).
     pub fn balance(&mut self) {
-        loop {
-            let mut to_split = HashSet::new();
-            for &(l, i, j) in &self.leaves {
-                if l < 2 {
-                    continue;
-                }
+        let mut by_level: Vec<Vec<usize>> = vec![];
+        for n in self.leaf_ids() {
+            let l = self.nodes[n].cell.0 as usize;
+            if by_level.len() <= l {
+                by_level.resize(l + 1, vec![]);
+            }
+            by_level[l].push(n);
+        }
+        // Finest first: a leaf of level l only splits coarser leaves (down to level l - 1),
+        // which are visited later; leaves of level l - 1 or finer are never split after.
+        for l in (2..by_level.len()).rev() {
+            let mut k = 0;
+            while k < by_level[l].len() {
+                let (_, i, j) = self.nodes[by_level[l][k]].cell;
+                k += 1;
                 for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
-                    if let Some(n) = self.covering(l, i as i64 + di, j as i64 + dj) {
-                        if n.0 + 1 < l {
-                            to_split.insert(n);
+                    let (ni, nj) = (i as i64 + di, j as i64 + dj);
+                    let Some(mut n) = self.locate(l as u32, ni, nj) else {
+                        continue;
+                    };
+                    while (self.nodes[n].cell.0 as usize) + 1 < l {
+                        let kids = self.split_node(n);
+                        let lk = self.nodes[n].cell.0 as usize + 1;
+                        for kid in kids {
+                            by_level[lk].push(kid);
                         }
+                        let shift = l - lk;
+                        n = kids[((ni >> shift) & 1) as usize + 2 * ((nj >> shift) & 1) as usize];
                     }
-                }
-            }
-            if to_split.is_empty() {
-                return;
-            }
-            for leaf in to_split {
-                if self.leaves.contains(&leaf) {
-                    self.split(leaf);
                 }
             }
         }
     }
 
-    /// Conforming cells as lattice corner lists (counter-clockwise in the parameter plane):
-    /// 4 corners for a quadrilateral, 3 for a triangle. Lattice points are (x, y) integers
-    /// in units of root / 2^DEPTH.
-    pub fn cells(&self) -> Vec<Vec<(u64, u64)>> {
-        let mut out = vec![];
-        let mut leaves: Vec<Leaf> = self.leaves.iter().copied().collect();
-        leaves.sort_unstable();
-        for leaf in leaves {
+    /// Conforming cells as lattice corner lists (counter-clockwise in the parameter plane),
+    /// leaf by leaf in sorted order: 4 corners for a quadrilateral, 3 for a triangle.
+    /// Lattice points are (x, y) integers in units of root / 2^DEPTH.
+    pub fn for_each_cell(&self, mut f: impl FnMut(&[(u64, u64)])) {
+        for leaf in self.leaves() {
             let (l, i, j) = leaf;
             let s = 1u64 << (DEPTH - l);
             let (x0, y0) = (i * s, j * s);
@@ -132,33 +188,36 @@ impl Quadtree {
                 self.finer_across(leaf, 0, 1).then_some((x0 + h, y0 + s)),
                 self.finer_across(leaf, -1, 0).then_some((x0, y0 + h)),
             ];
-            if mids.iter().all(|m| m.is_none()) {
-                out.push(c.to_vec());
+            let hanging = mids.iter().filter(|m| m.is_some()).count();
+            if hanging == 0 {
+                f(&c);
                 continue;
             }
             let centre = (x0 + h, y0 + h);
-            let hanging: Vec<usize> = (0..4).filter(|&k| mids[k].is_some()).collect();
-            if let [k] = hanging[..] {
+            if hanging == 1 {
                 // one hanging side (k): two quadrilaterals and one right triangle
+                let k = mids.iter().position(|m| m.is_some()).unwrap();
                 let (a, m, b) = (c[k], mids[k].unwrap(), c[(k + 1) % 4]);
                 let (cc, d) = (c[(k + 2) % 4], c[(k + 3) % 4]);
-                out.push(vec![a, m, centre, d]);
-                out.push(vec![m, b, cc, centre]);
-                out.push(vec![cc, d, centre]);
+                f(&[a, m, centre, d]);
+                f(&[m, b, cc, centre]);
+                f(&[cc, d, centre]);
                 continue;
             }
-            let mut ring = vec![];
+            let mut ring = [(0, 0); 8];
+            let mut len = 0;
             for k in 0..4 {
-                ring.push(c[k]);
+                ring[len] = c[k];
+                len += 1;
                 if let Some(m) = mids[k] {
-                    ring.push(m);
+                    ring[len] = m;
+                    len += 1;
                 }
             }
-            for k in 0..ring.len() {
-                out.push(vec![ring[k], ring[(k + 1) % ring.len()], centre]);
+            for k in 0..len {
+                f(&[ring[k], ring[(k + 1) % len], centre]);
             }
         }
-        out
     }
 
     /// Parameter coordinates of a lattice point.
@@ -168,8 +227,83 @@ impl Quadtree {
     }
 }
 
-/// Node numbering by lattice point, shared by the cells of one body.
-#[derive(Default)]
-pub struct LatticeNodes {
-    pub index: HashMap<(u64, u64), usize>,
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::collections::HashSet;
+
+    /// The balance by its definition: split any leaf with a side neighbour two or more
+    /// levels finer, until none is left (a hash set of leaves, neighbours by lookup).
+    fn balance_by_definition(nx: u64, ny: u64, mut leaves: HashSet<Leaf>) -> HashSet<Leaf> {
+        let covering = |leaves: &HashSet<Leaf>, l: u32, i: i64, j: i64| {
+            if i < 0 || j < 0 || i as u64 >= nx << l || j as u64 >= ny << l {
+                return None;
+            }
+            (0..=l)
+                .map(|lc| (lc, (i as u64) >> (l - lc), (j as u64) >> (l - lc)))
+                .find(|c| leaves.contains(c))
+        };
+        loop {
+            let mut split = HashSet::new();
+            for &(l, i, j) in &leaves {
+                for (di, dj) in [(1, 0), (-1, 0), (0, 1), (0, -1)] {
+                    if let Some(n) = covering(&leaves, l, i as i64 + di, j as i64 + dj) {
+                        if n.0 + 1 < l {
+                            split.insert(n);
+                        }
+                    }
+                }
+            }
+            if split.is_empty() {
+                return leaves;
+            }
+            for (l, i, j) in split {
+                leaves.remove(&(l, i, j));
+                for (di, dj) in [(0, 0), (1, 0), (0, 1), (1, 1)] {
+                    leaves.insert((l + 1, 2 * i + di, 2 * j + dj));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn balance_is_the_least_balanced_refinement() {
+        // trees refined deep towards points next to the sides of root cells (the finest
+        // leaves there touch a root: strongly unbalanced), 3 × 2 roots
+        let targets: [&[(f64, f64)]; 3] = [
+            &[(1.0001, 0.5)],
+            &[(1.999, 1.3), (0.5, 1.001)],
+            &[(0.0001, 1.999), (2.5, 0.999), (1.75, 1.5)],
+        ];
+        for pts in targets {
+            let mut tree = Quadtree::new(3, 2, 1.0);
+            tree.refine(9, &|t, leaf| {
+                let (x0, y0, s) = t.bbox(leaf);
+                pts.iter()
+                    .any(|&(x, y)| x >= x0 && x <= x0 + s && y >= y0 && y <= y0 + s)
+            });
+            let before: HashSet<Leaf> = tree.leaves().into_iter().collect();
+            tree.balance();
+            let expect = balance_by_definition(3, 2, before.clone());
+            let got: HashSet<Leaf> = tree.leaves().into_iter().collect();
+            assert!(got.len() > before.len(), "the balance split nothing");
+            assert_eq!(got, expect);
+        }
+    }
+
+    #[test]
+    fn hanging_sides_become_triangle_fans() {
+        // one root split, then its lower-left child: the other three children have a
+        // finer neighbour across one side each, or none
+        let mut tree = Quadtree::new(1, 1, 1.0);
+        tree.split((0, 0, 0));
+        tree.split((1, 0, 0));
+        assert_eq!(tree.num_leaves(), 7);
+        assert_eq!(tree.num_leaves(), tree.leaves().len());
+        let mut kinds = vec![];
+        tree.for_each_cell(|c| kinds.push(c.len()));
+        // 4 quads (level 2); (1,1,0) and (1,0,1): 2 quads + 1 triangle each; (1,1,1): quad
+        assert_eq!(kinds.iter().filter(|&&n| n == 4).count(), 4 + 4 + 1);
+        assert_eq!(kinds.iter().filter(|&&n| n == 3).count(), 2);
+    }
 }

@@ -30,7 +30,16 @@ pub fn quality(mesh: &Mesh) -> Option<Quality> {
         let kind = mesh.kind(c);
         let nc = kind.num_corners();
         let nodes = mesh.cell_nodes(c);
-        let p: Vec<[f64; 2]> = nodes[..nc].iter().map(|&n| mesh.coords[n]).collect();
+        let mut p = [[0.0; 2]; 4];
+        for (slot, &n) in p.iter_mut().zip(&nodes[..nc]) {
+            *slot = mesh.coords[n];
+        }
+        // side k runs from corner k to k + 1; one length per side
+        let mut len = [0.0; 4];
+        for k in 0..nc {
+            let (a, b) = (p[k], p[(k + 1) % nc]);
+            len[k] = (b[0] - a[0]).hypot(b[1] - a[1]);
+        }
         let (mut lmin, mut lmax) = (f64::INFINITY, 0.0f64);
         for i in 0..nc {
             let a = p[i];
@@ -38,8 +47,7 @@ pub fn quality(mesh: &Mesh) -> Option<Quality> {
             let prev = p[(i + nc - 1) % nc];
             let e1 = [b[0] - a[0], b[1] - a[1]];
             let e2 = [prev[0] - a[0], prev[1] - a[1]];
-            let l1 = e1[0].hypot(e1[1]);
-            let l2 = e2[0].hypot(e2[1]);
+            let (l1, l2) = (len[i], len[(i + nc - 1) % nc]);
             lmin = lmin.min(l1);
             lmax = lmax.max(l1);
             let cos = ((e1[0] * e2[0] + e1[1] * e2[1]) / (l1 * l2)).clamp(-1.0, 1.0);

@@ -2,9 +2,9 @@
 //! boundary edge groups and point groups.
 
 use super::super::builder::MeshBuilder;
+use super::super::fasthash::FastMap;
 use super::super::quadtree::Quadtree;
 use super::super::CellKind;
-use std::collections::HashMap;
 
 /// Adds the cells of a quadtree (through `map`) to the builder; returns lattice → node.
 pub(super) fn add_tree_cells(
@@ -13,26 +13,30 @@ pub(super) fn add_tree_cells(
     map: &dyn Fn([f64; 2]) -> [f64; 2],
     quadratic: bool,
     group: &str,
-    mids: &mut HashMap<(usize, usize), usize>,
-) -> HashMap<(u64, u64), usize> {
-    let mut nodes: HashMap<(u64, u64), usize> = HashMap::new();
-    let mut node = |b: &mut MeshBuilder, p: (u64, u64)| {
-        *nodes
-            .entry(p)
-            .or_insert_with(|| b.add_node(map(tree.param(p))))
-    };
-    for corners in tree.cells() {
-        let ids: Vec<usize> = corners.iter().map(|&p| node(b, p)).collect();
-        let n = ids.len();
-        let mut all = ids.clone();
+    mids: &mut FastMap<(usize, usize), usize>,
+) -> FastMap<(u64, u64), usize> {
+    // about one corner node per leaf, two sides per cell: sized once, never rehashed
+    let leaves = tree.num_leaves();
+    let mut nodes: FastMap<(u64, u64), usize> = FastMap::default();
+    nodes.reserve(leaves + leaves / 4);
+    if quadratic {
+        mids.reserve(3 * leaves);
+    }
+    tree.for_each_cell(|corners| {
+        let n = corners.len();
+        let mut all = [0usize; 8];
+        for (k, &p) in corners.iter().enumerate() {
+            all[k] = *nodes
+                .entry(p)
+                .or_insert_with(|| b.add_node(map(tree.param(p))));
+        }
         if quadratic {
             for k in 0..n {
                 let (pa, pb) = (corners[k], corners[(k + 1) % n]);
-                let key = (ids[k].min(ids[(k + 1) % n]), ids[k].max(ids[(k + 1) % n]));
-                let m = *mids.entry(key).or_insert_with(|| {
+                let (ia, ib) = (all[k], all[(k + 1) % n]);
+                all[n + k] = *mids.entry((ia.min(ib), ia.max(ib))).or_insert_with(|| {
                     b.add_node(map(tree.param(((pa.0 + pb.0) / 2, (pa.1 + pb.1) / 2))))
                 });
-                all.push(m);
             }
         }
         let kind = match (n, quadratic) {
@@ -42,9 +46,9 @@ pub(super) fn add_tree_cells(
             (_, true) => CellKind::Tri6,
         };
         let label = b_cells(b);
-        let c = b.add_cell(kind, &all, label);
+        let c = b.add_cell(kind, &all[..kind.num_nodes()], label);
         b.add_to_cell_group(group, c);
-    }
+    });
     nodes
 }
 
@@ -59,7 +63,7 @@ pub(super) fn add_plain_cell(
     corners: &[usize],
     quadratic: bool,
     group: &str,
-    mids: &mut HashMap<(usize, usize), usize>,
+    mids: &mut FastMap<(usize, usize), usize>,
 ) {
     let n = corners.len();
     let mut all = corners.to_vec();
@@ -89,7 +93,8 @@ pub(super) fn add_plain_cell(
 type Edge = (usize, usize, Option<usize>);
 
 pub(super) fn boundary_edges(b: &MeshBuilder, first_cell: usize) -> Vec<Edge> {
-    let mut count: HashMap<(usize, usize), (Edge, usize)> = HashMap::new();
+    let mut count: FastMap<(usize, usize), (Edge, usize)> = FastMap::default();
+    count.reserve(3 * (b.num_cells() - first_cell));
     for c in first_cell..b.num_cells() {
         let (kind, nodes) = b.cell(c);
         for e in kind.edges() {

@@ -1,9 +1,9 @@
 //! Structured grids: rectangles (optionally distorted) and annular sectors.
 
 use super::super::builder::MeshBuilder;
+use super::super::fasthash::FastMap;
 use super::super::{CellKind, Mesh};
 use crate::error::{Error, Result};
-use std::collections::HashMap;
 
 /// Structured grid of nx × ny cells of `kind` over a parametric square mapped by `map`
 /// (s, t) ∈ [0,1]² → (x, y); `mid` places mid-side nodes from the parametric midpoint.
@@ -34,7 +34,7 @@ fn grid(
         }
     }
     // mid-side nodes keyed by the doubled parametric grid position
-    let mut mids: HashMap<(usize, usize), usize> = HashMap::new();
+    let mut mids: FastMap<(usize, usize), usize> = FastMap::default();
     let mut mid = |b: &mut MeshBuilder, i2: usize, j2: usize| -> usize {
         *mids.entry((i2, j2)).or_insert_with(|| {
             b.add_node(map(

@@ -5,7 +5,7 @@ use super::super::quadtree::{Leaf, Quadtree};
 use super::super::Mesh;
 use super::cells::{add_edge_cells, add_plain_cell, add_point, add_tree_cells};
 use crate::error::{Error, Result};
-use std::collections::HashMap;
+use crate::mesh::fasthash::FastMap;
 
 #[derive(Clone, Debug)]
 pub struct Ssnp154Options {
@@ -102,14 +102,13 @@ fn ssnp154_block(b: &mut MeshBuilder, o: &Ssnp154Options) {
     });
     tree.balance();
     for _ in 0..o.global_refine {
-        let leaves: Vec<Leaf> = tree.leaves.iter().copied().collect();
-        for l in leaves {
+        for l in tree.leaves() {
             tree.split(l);
         }
     }
     let first_node = b.num_nodes();
     let first_cell = b.num_cells();
-    let mut mids = HashMap::new();
+    let mut mids = FastMap::default();
     add_tree_cells(b, &tree, &map, o.quadratic, "Block", &mut mids);
     add_edge_cells(b, first_cell, &|p, q| {
         let mut g = vec![];
@@ -166,7 +165,7 @@ pub(super) fn half_disc(b: &mut MeshBuilder, o: &HalfDisc) {
         if touches_core(t, leaf) {
             return leaf.0 == 0;
         }
-        let pts: Vec<[f64; 2]> = [
+        let pts: [[f64; 2]; 8] = [
             (0.0, 0.0),
             (1.0, 0.0),
             (1.0, 1.0),
@@ -176,9 +175,7 @@ pub(super) fn half_disc(b: &mut MeshBuilder, o: &HalfDisc) {
             (0.0, 0.5),
             (1.0, 0.5),
         ]
-        .iter()
-        .map(|&(a, c)| map([x0 + a * s, y0 + c * s]))
-        .collect();
+        .map(|(a, c)| map([x0 + a * s, y0 + c * s]));
         let size = (pts[0][0] - pts[1][0])
             .hypot(pts[0][1] - pts[1][1])
             .max((pts[0][0] - pts[3][0]).hypot(pts[0][1] - pts[3][1]));
@@ -192,9 +189,8 @@ pub(super) fn half_disc(b: &mut MeshBuilder, o: &HalfDisc) {
     loop {
         tree.balance();
         let ring: Vec<Leaf> = tree
-            .leaves
-            .iter()
-            .copied()
+            .leaves()
+            .into_iter()
             .filter(|&l| touches_core(&tree, l))
             .collect();
         let top = ring.iter().map(|l| l.0).max().unwrap_or(0);
@@ -207,14 +203,13 @@ pub(super) fn half_disc(b: &mut MeshBuilder, o: &HalfDisc) {
         }
     }
     for _ in 0..o.global_refine {
-        let leaves: Vec<Leaf> = tree.leaves.iter().copied().collect();
-        for l in leaves {
+        for l in tree.leaves() {
             tree.split(l);
         }
     }
     let first_node = b.num_nodes();
     let first_cell = b.num_cells();
-    let mut mids = HashMap::new();
+    let mut mids = FastMap::default();
     let lattice = add_tree_cells(b, &tree, &map, o.quadratic, o.body, &mut mids);
     // Core: rings of triangles halving the node count down to 5 nodes, then a fan.
     let vmax_lattice = lattice.keys().map(|p| p.1).max().unwrap();
@@ -277,6 +272,7 @@ pub(super) fn half_disc(b: &mut MeshBuilder, o: &HalfDisc) {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::collections::HashMap;
 
     fn check_ssnp154(o: &Ssnp154Options) -> Mesh {
         let m = ssnp154(o).unwrap();
