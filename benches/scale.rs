@@ -23,8 +23,8 @@ use tribo::mesh::generate::{ssnp154 as generate, Ssnp154Options};
 use tribo::mesh::Mesh;
 use tribo::solver::linear::{LinearSolver, Method};
 
-/// Largest mesh of a default run (displacement unknowns): a few minutes on the 2-core
-/// machine (mortar A alone took 140 s at 31k unknowns and 270 s at 89k).
+/// Largest mesh of a default run (displacement unknowns): 7–8 minutes on the 2-core
+/// machine, of which mortar A at 31k unknowns and mortar D at 34k take 140 and 200 s.
 const DEFAULT_MAX: usize = 50_000;
 /// The exponent is fitted over the rows from this many unknowns (smaller meshes are
 /// dominated by set-up costs).
