@@ -971,7 +971,7 @@ impl PointToSegment {
         // hundreds of small master cells within reach: their clique made the pattern, and
         // its memory, grow as the square of the refinement).
         let nm = self.mult_nodes.len();
-        let mut stencil: Vec<usize> = vec![];
+        let mut cliques = vec![];
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             // a slave cell with no master cell within reach has no coupling (yet)
             let mut own: Vec<usize> = vec![];
@@ -990,13 +990,11 @@ impl PointToSegment {
                 own.extend(friction);
             }
             own.extend(mults);
-            for &r in &own {
-                for &c in &own {
-                    k.add(r, c, 0.0);
-                }
+            if self.candidates[ic].is_empty() {
+                cliques.push(own.clone());
             }
             for &im in &self.candidates[ic] {
-                stencil.clear();
+                let mut stencil = own.clone();
                 for &n in mesh.cell_nodes(self.master.cells[im]) {
                     for &jm in self.master_cells_of_node.get(&n).into_iter().flatten() {
                         for &m in mesh.cell_nodes(self.master.cells[jm]) {
@@ -1006,17 +1004,10 @@ impl PointToSegment {
                 }
                 stencil.sort_unstable();
                 stencil.dedup();
-                for &r in &stencil {
-                    for &c in &stencil {
-                        k.add(r, c, 0.0);
-                    }
-                    for &c in &own {
-                        k.add(r, c, 0.0);
-                        k.add(c, r, 0.0);
-                    }
-                }
+                cliques.push(stencil);
             }
         }
+        k.add_clique_union(&cliques);
     }
 
     /// Re-pairs and updates the statuses from the iterate (u, λ); returns the number of changes.

@@ -460,6 +460,7 @@ impl ContactPair for Mortar {
         if self.pattern_sent.swap(generation, Ordering::Relaxed) == generation {
             return;
         }
+        let mut cliques = Vec::with_capacity(self.slave.cells.len());
         for (ic, &sc) in self.slave.cells.iter().enumerate() {
             let nodes = self.nodes_in_pattern(mesh, ic);
             let mut mults: Vec<usize> = mesh
@@ -473,12 +474,9 @@ impl ContactPair for Mortar {
             }
             let mut all: Vec<usize> = nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
             all.extend_from_slice(&mults);
-            for &r in &all {
-                for &cc in &all {
-                    k.add(r, cc, 0.0);
-                }
-            }
+            cliques.push(all);
         }
+        k.add_clique_union(&cliques);
     }
 
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
