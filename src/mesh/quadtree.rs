@@ -220,6 +220,13 @@ impl Quadtree {
         }
     }
 
+    /// The cells of `for_each_cell`, collected.
+    pub fn cells(&self) -> Vec<Vec<(u64, u64)>> {
+        let mut out = vec![];
+        self.for_each_cell(|c| out.push(c.to_vec()));
+        out
+    }
+
     /// Parameter coordinates of a lattice point.
     pub fn param(&self, p: (u64, u64)) -> [f64; 2] {
         let unit = self.root / (1u64 << DEPTH) as f64;
