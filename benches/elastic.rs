@@ -11,15 +11,6 @@ use tribo::fem::solid::Kinematics;
 use tribo::mesh::generate::{ssnp154 as generate, Ssnp154Options};
 use tribo::solver::linear::{LinearSolver, Method};
 
-fn peak_rss_mib() -> f64 {
-    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    s.lines()
-        .find(|l| l.starts_with("VmHWM"))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|v| v.parse::<f64>().ok())
-        .map_or(f64::NAN, |kb| kb / 1024.0)
-}
-
 fn main() {
     // as the `tribo` command does
     tribo::cli::keep_freed_memory();
@@ -111,7 +102,7 @@ fn time_elastic_solves() {
             t_refac,
             t_solve,
             t_asm + t_fac + t_solve,
-            peak_rss_mib()
+            tribo::memory::peak_resident_mib()
         );
     }
 }

@@ -80,16 +80,6 @@ fn mesh_of(quadratic: bool, generated: f64, refine: usize) -> tribo::error::Resu
 
 // ---------------------------------------------------------------- measurement process
 
-/// Peak resident size of this process (MiB), NaN where /proc is not there.
-fn peak_rss_mib() -> f64 {
-    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
-    s.lines()
-        .find(|l| l.starts_with("VmHWM"))
-        .and_then(|l| l.split_whitespace().nth(1))
-        .and_then(|v| v.parse::<f64>().ok())
-        .map_or(f64::NAN, |kb| kb / 1024.0)
-}
-
 /// One measurement: `elastic SETUP SIZE` or `contact SETUP FORMULATION SIZE`. Returns the
 /// result line: `SCALE` and tab-separated key=value pairs, the failure reason last.
 fn measure(args: &[String]) -> String {
@@ -151,7 +141,7 @@ fn elastic(mesh: &Mesh, spec: tribo::case::schema::MeshSpec) -> Result<Fields, S
         ("status", "ok".into()),
         ("unknowns", unknowns.to_string()),
         ("time", t.elapsed().as_secs_f64().to_string()),
-        ("peak", peak_rss_mib().to_string()),
+        ("peak", tribo::memory::peak_resident_mib().to_string()),
     ])
 }
 
@@ -179,7 +169,7 @@ fn contact(
             if failure.is_none() { "ok" } else { "failed" }.into(),
         ),
         ("time", time),
-        ("peak", peak_rss_mib().to_string()),
+        ("peak", tribo::memory::peak_resident_mib().to_string()),
     ];
     if let Some(r) = report {
         fields.push(("iterations", r.total_iterations.to_string()));

@@ -137,6 +137,17 @@ fn parse_size(s: &str) -> Option<u64> {
 }
 
 /// Bytes for people: "1.5 GB", "230 MB".
+/// This process's peak resident size in MiB (VmHWM), NaN where /proc is not there (for
+/// the benches' memory columns).
+pub fn peak_resident_mib() -> f64 {
+    let s = std::fs::read_to_string("/proc/self/status").unwrap_or_default();
+    s.lines()
+        .find(|l| l.starts_with("VmHWM"))
+        .and_then(|l| l.split_whitespace().nth(1))
+        .and_then(|v| v.parse::<f64>().ok())
+        .map_or(f64::NAN, |kb| kb / 1024.0)
+}
+
 pub fn show(bytes: u64) -> String {
     let b = bytes as f64;
     if b >= (1u64 << 30) as f64 {

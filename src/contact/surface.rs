@@ -63,19 +63,7 @@ impl Surface {
                  it must be one open or closed curve)"
             )));
         }
-        let mut nodes: Vec<usize> = cells
-            .iter()
-            .flat_map(|&c| mesh.cell_nodes(c).iter().copied())
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
-        Ok(Surface {
-            group: group.to_string(),
-            cells,
-            ccw,
-            parent,
-            nodes,
-        })
+        Ok(Surface::of_cells(mesh, group, cells, ccw, parent))
     }
 }
 
@@ -155,19 +143,31 @@ impl Surface {
                 ccw.iter_mut().for_each(|c| *c = !*c);
             }
         }
+        Ok(Surface::of_cells(mesh, group, cells, ccw, vec![]))
+    }
+
+    /// The surface of these edge cells (their orientations and parent 2D cells given),
+    /// with its sorted nodes.
+    fn of_cells(
+        mesh: &Mesh,
+        group: &str,
+        cells: Vec<usize>,
+        ccw: Vec<bool>,
+        parent: Vec<usize>,
+    ) -> Surface {
         let mut nodes: Vec<usize> = cells
             .iter()
             .flat_map(|&c| mesh.cell_nodes(c).iter().copied())
             .collect();
         nodes.sort_unstable();
         nodes.dedup();
-        Ok(Surface {
+        Surface {
             group: group.to_string(),
             cells,
             ccw,
-            parent: vec![],
+            parent,
             nodes,
-        })
+        }
     }
 
     /// Whether this is a rigid surface (no parent 2D cells).
