@@ -136,7 +136,6 @@ fn parse_size(s: &str) -> Option<u64> {
     (v.is_finite() && v >= 0.0).then_some((v * mult as f64) as u64)
 }
 
-/// Bytes for people: "1.5 GB", "230 MB".
 /// This process's peak resident size in MiB (VmHWM), NaN where /proc is not there (for
 /// the benches' memory columns).
 pub fn peak_resident_mib() -> f64 {
@@ -148,6 +147,7 @@ pub fn peak_resident_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
+/// Bytes for people: "1.5 GB", "230 MB".
 pub fn show(bytes: u64) -> String {
     let b = bytes as f64;
     if b >= (1u64 << 30) as f64 {

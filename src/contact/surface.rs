@@ -155,12 +155,7 @@ impl Surface {
         ccw: Vec<bool>,
         parent: Vec<usize>,
     ) -> Surface {
-        let mut nodes: Vec<usize> = cells
-            .iter()
-            .flat_map(|&c| mesh.cell_nodes(c).iter().copied())
-            .collect();
-        nodes.sort_unstable();
-        nodes.dedup();
+        let nodes = mesh.nodes_of_cells(&cells);
         Surface {
             group: group.to_string(),
             cells,

@@ -129,7 +129,11 @@ impl Mesh {
         if let Some(nodes) = self.node_groups.get(name) {
             return Ok(nodes.clone());
         }
-        let cells = self.cell_group(name)?;
+        Ok(self.nodes_of_cells(self.cell_group(name)?))
+    }
+
+    /// The nodes of these cells, sorted and unique.
+    pub fn nodes_of_cells(&self, cells: &[usize]) -> Vec<usize> {
         let listed: usize = cells.iter().map(|&c| self.cell_nodes(c).len()).sum();
         if listed < self.num_nodes() / 16 {
             let mut nodes: Vec<usize> = cells
@@ -138,7 +142,7 @@ impl Mesh {
                 .collect();
             nodes.sort_unstable();
             nodes.dedup();
-            return Ok(nodes);
+            return nodes;
         }
         // a large group: marking is linear where sorting its node list is not
         let mut member = vec![false; self.num_nodes()];
@@ -147,7 +151,7 @@ impl Mesh {
                 member[n] = true;
             }
         }
-        Ok((0..member.len()).filter(|&n| member[n]).collect())
+        (0..member.len()).filter(|&n| member[n]).collect()
     }
 
     /// The single node of a group that must hold exactly one node (e.g. B, C, Force).
