@@ -95,6 +95,43 @@ fn ssnp154_resultant_carries_the_load_and_the_length_is_hertz() {
     }
 }
 
+/// Every output step's contact outputs are those of its own converged state: the pair's
+/// vertical resultant balances the support's reaction at each of 4 steps (1e-6 of the
+/// force), frictionless and with friction. (They were once taken after the solve, with the
+/// last step's statuses and friction history: at t = 1/4 mortar reported 12 times the load.)
+#[test]
+fn every_output_step_has_the_contact_forces_of_its_own_state() {
+    for (id, formulation) in [
+        ("A", Some("point-to-segment")),
+        ("A", Some("mortar")),
+        ("C", Some("point-to-segment")),
+        ("C", Some("mortar")),
+    ] {
+        let spec = ssnp154::builtin_mesh(false, 1.5);
+        let mesh = case::build_mesh(&spec, Path::new("")).unwrap();
+        let mut c = ssnp154::contact_case(id, spec, formulation);
+        c.solver.steps = 4;
+        c.output.history = true;
+        let out = case::run(&c, &mesh, false).unwrap();
+        assert_eq!(out.steps.len(), 4, "{id} {formulation:?}");
+        let base = mesh.node_group("Encast").unwrap();
+        for s in &out.steps {
+            let support: f64 = base.iter().map(|&n| s.reactions[2 * n + 1]).sum();
+            let f = s.contact[0].summary.force;
+            println!(
+                "{id} {formulation:?} t = {}: contact force {f:?}, support {support}",
+                s.time
+            );
+            // (mortar puts the multipliers on the finer block top: the force on the block)
+            assert!(
+                (f[1].abs() - support).abs() < 1e-6 * 17500.0 * s.time,
+                "{id} {formulation:?} t = {}: contact force {f:?}, support {support}",
+                s.time
+            );
+        }
+    }
+}
+
 /// The block pressed on the foundation (small kinematics: flat normals), then dragged
 /// sideways until every contact node slips: per pair T/N = μ = 0.3 (1e-6), and N, T equal
 /// the reactions of the block's top (1e-8), in every formulation.

@@ -19,6 +19,8 @@ use crate::post::stress::{cell_node_stresses, cell_node_stresses_as, nodal_stres
 use crate::solver::linear::Method;
 use crate::solver::newton::{self, NewtonReport, NewtonSettings, Nonlinear};
 use crate::solver::problem::SolidProblem;
+use std::cell::RefCell;
+use std::rc::Rc;
 
 /// What a run produces.
 pub struct Outcome {
@@ -270,10 +272,20 @@ fn solve_on(case: &CaseFile, mesh: &Mesh, verbose: bool) -> std::result::Result<
         // geometry terms: condensed on the contact interface (exact), or for a large
         // interface LDLᵀ of a symmetric approximation with GMRES on the exact matrix (LU if
         // that fails).
+        let recorded = Rc::new(RefCell::new(vec![]));
+        if settings.keep_states {
+            let (into, axisymmetric) = (recorded.clone(), is_axisymmetric(case));
+            cp.on_commit = Some(Box::new(move |cp: &ContactProblem| {
+                let fields = contact_fields(cp, axisymmetric);
+                into.borrow_mut().push((cp.solid.time, fields));
+            }));
+        }
         let solved = newton::solve_into(&mut cp, &settings, Method::SaddleLdlt, &mut report);
+        cp.on_commit = None;
+        let recorded = recorded.take();
         let states = output_states(std::mem::take(&mut report.states), is_output);
         let kept = (solved.is_ok() || !states.is_empty())
-            .then(|| with_contact(case, mesh, &mut cp, &states, settings.keep_states));
+            .then(|| with_contact(case, mesh, &mut cp, &states, recorded, settings.keep_states));
         finish(solved, kept, report)
     }
 }
@@ -362,15 +374,21 @@ fn without_contact(
     final_outcome(case, mesh, problem, steps, ContactFields::none())
 }
 
-/// `without_contact` with contact: the pressures, shear and multipliers of each state too.
+fn is_axisymmetric(case: &CaseFile) -> bool {
+    case.model.modelisation == Modelisation::Axisymmetric
+}
+
+/// `without_contact` with contact: the pressures, shear and multipliers of each state too,
+/// those `recorded` at the state's commit (by time) where there are.
 fn with_contact(
     case: &CaseFile,
     mesh: &Mesh,
     cp: &mut ContactProblem,
     states: &[(f64, Vec<f64>, bool)],
+    mut recorded: Vec<(f64, Result<ContactFields>)>,
     keep: bool,
 ) -> Result<Outcome> {
-    let axisymmetric = case.model.modelisation == Modelisation::Axisymmetric;
+    let axisymmetric = is_axisymmetric(case);
     let mut steps = vec![];
     let mut r = vec![0.0; cp.num_unknowns()];
     for (lf, x, output) in states {
@@ -378,7 +396,10 @@ fn with_contact(
         if !(*output && keep) {
             continue;
         }
-        let contact = contact_fields(cp, axisymmetric)?;
+        let contact = match recorded.iter().position(|(t, _)| t == lf) {
+            Some(k) => recorded.swap_remove(k).1?,
+            None => contact_fields(cp, axisymmetric)?,
+        };
         steps.push(step_outcome(case, mesh, &cp.solid, *lf, contact)?);
     }
     let contact = contact_fields(cp, axisymmetric)?;

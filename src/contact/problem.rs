@@ -26,7 +26,14 @@ pub struct ContactProblem<'m> {
     overlap: OverlapCheck,
     /// The displacement of the last converged state, where the overlap check's paths start.
     committed_u: Vec<f64>,
+    /// Called at each converged state before the pairs commit it: the outputs of a state
+    /// are taken there, as the pairs' statuses and friction history move on with the solve
+    /// (a state evaluated again after the solve would get the last step's).
+    pub on_commit: Option<CommitHook<'m>>,
 }
+
+/// See `ContactProblem::on_commit`.
+pub type CommitHook<'m> = Box<dyn FnMut(&ContactProblem<'m>) + 'm>;
 
 impl<'m> ContactProblem<'m> {
     /// The coupled tangent from the solid matrix as last assembled and the contact
@@ -63,6 +70,7 @@ impl<'m> ContactProblem<'m> {
             saved_lam: vec![0.0; n],
             overlap,
             committed_u,
+            on_commit: None,
         }
     }
 
@@ -250,6 +258,10 @@ impl Nonlinear for ContactProblem<'_> {
     }
 
     fn commit_step(&mut self) {
+        if let Some(mut hook) = self.on_commit.take() {
+            hook(self);
+            self.on_commit = Some(hook);
+        }
         for (p, &base) in self.pairs.iter_mut().zip(&self.mult_base) {
             let n = p.num_multipliers();
             p.commit(&self.solid.u, &self.lam[base..base + n]);
