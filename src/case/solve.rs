@@ -246,7 +246,7 @@ fn solve_on(case: &CaseFile, mesh: &Mesh, verbose: bool) -> std::result::Result<
     };
     let end = *settings.times.last().unwrap_or(&1.0);
     // the converged states that are output times (all of them by default)
-    let is_output = |t: f64| {
+    let is_output = move |t: f64| {
         output_times
             .as_ref()
             .is_none_or(|o| o.iter().any(|&x| (x - t).abs() <= 1e-9 * end))
@@ -275,9 +275,13 @@ fn solve_on(case: &CaseFile, mesh: &Mesh, verbose: bool) -> std::result::Result<
         let recorded = Rc::new(RefCell::new(vec![]));
         if settings.keep_states {
             let (into, axisymmetric) = (recorded.clone(), is_axisymmetric(case));
+            let wanted = is_output.clone();
             cp.on_commit = Some(Box::new(move |cp: &ContactProblem| {
-                let fields = contact_fields(cp, axisymmetric);
-                into.borrow_mut().push((cp.solid.time, fields));
+                let t = cp.solid.time;
+                if wanted(t) {
+                    into.borrow_mut()
+                        .push((t, contact_fields(cp, axisymmetric)));
+                }
             }));
         }
         let solved = newton::solve_into(&mut cp, &settings, Method::SaddleLdlt, &mut report);
