@@ -382,8 +382,8 @@ fn is_axisymmetric(case: &CaseFile) -> bool {
     case.model.modelisation == Modelisation::Axisymmetric
 }
 
-/// `without_contact` with contact: the pressures, shear and multipliers of each state too,
-/// those `recorded` at the state's commit (by time) where there are.
+/// `without_contact` with contact: the pressures, shear and multipliers of each output
+/// state too, those `recorded` at the state's commit (by time).
 fn with_contact(
     case: &CaseFile,
     mesh: &Mesh,
@@ -400,9 +400,15 @@ fn with_contact(
         if !(*output && keep) {
             continue;
         }
+        // (evaluated again here, a state would get the last step's statuses and friction
+        // history: every output state is recorded at its commit)
         let contact = match recorded.iter().position(|(t, _)| t == lf) {
             Some(k) => recorded.swap_remove(k).1?,
-            None => contact_fields(cp, axisymmetric)?,
+            None => {
+                return Err(Error::solve(format!(
+                    "internal error: no contact outputs were recorded for the state at t = {lf}"
+                )))
+            }
         };
         steps.push(step_outcome(case, mesh, &cp.solid, *lf, contact)?);
     }
