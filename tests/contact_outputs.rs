@@ -314,3 +314,75 @@ fn result_files_leave_off_surface_nodes_empty_and_open_nodes_zero() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// The same beyond SSNP154: an axisymmetric steel punch (r ≤ 10 mm) pressed step by step
+/// into an aluminium foundation, in N-m-Pa, with either surface as slave, frictionless
+/// and with Coulomb 0.3, in every formulation. At each of 4 steps the pair's axial
+/// resultant balances the reaction on the punch's top (1e-6 of it): each step's outputs
+/// are those of its own state, not of the last one.
+#[test]
+fn every_output_step_balances_its_own_reactions_in_axisymmetry_and_si_units() {
+    use tribo::mesh::generate::rectangle;
+    use tribo::mesh::CellKind;
+    let lower = rectangle([0.0, -0.02], 0.03, 0.02, 12, 6, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([0.0, 0.0], 0.01, 0.005, 8, 3, CellKind::Quad4, 0.0).unwrap();
+    let mesh = common::bodies(&[("Lower", &lower), ("Upper", &upper)]);
+    let head = common::case_head(&[("LowerBody", 70e9, 0.33), ("UpperBody", 210e9, 0.3)]);
+    for formulation in ["point-to-segment", "node-to-segment", "mortar"] {
+        for (slave, master) in [("UpperBottom", "LowerTop"), ("LowerTop", "UpperBottom")] {
+            for friction in [0.0, 0.3] {
+                let text = format!(
+                    r#"{head}
+[model]
+modelisation = "axisymmetric"
+[[function]]
+name = "press"
+table = [[0, 0], [1, 1]]
+[[displacement]]
+group = "LowerBottom"
+dx = 0.0
+dy = 0.0
+[[displacement]]
+group = "UpperTop"
+dy = -2e-5
+function = "press"
+[[contact]]
+slave = "{slave}"
+master = "{master}"
+formulation = "{formulation}"
+friction = {friction:?}
+[solver]
+steps = 4
+tolerance = 1e-9
+[output]
+history = true
+"#
+                );
+                let what = format!("{formulation}, slave {slave}, friction {friction}");
+                let c: case::schema::CaseFile = toml::from_str(&text).unwrap();
+                let out = case::run(&c, &mesh, false).unwrap_or_else(|e| panic!("{what}: {e}"));
+                // (every converged step is output: a cut step adds one)
+                for t in [0.25, 0.5, 0.75, 1.0] {
+                    let at = out.steps.iter().any(|s| (s.time - t).abs() < 1e-12);
+                    assert!(at, "{what}: an output at t = {t}");
+                }
+                let mut last = 0.0;
+                for s in &out.steps {
+                    let (_, ry) = common::group_sum(&mesh, "UpperTop", &s.reactions);
+                    let f = s.contact[0].summary.force;
+                    println!(
+                        "{what} t = {}: contact force {f:?}, top reaction {ry}",
+                        s.time
+                    );
+                    assert!(ry.abs() > last, "{what}: the load grows");
+                    last = ry.abs();
+                    assert!(
+                        (f[1].abs() - ry.abs()).abs() < 1e-6 * ry.abs(),
+                        "{what} t = {}: contact force {f:?}, top reaction {ry}",
+                        s.time
+                    );
+                }
+            }
+        }
+    }
+}
