@@ -8,15 +8,18 @@
 //! compared with the largest merit of the step's last few Newton points, so that the
 //! residual of a contact zone growing from a first touch, which rises and falls while the
 //! statuses settle, is not cut back; only a correction that makes things worse than all of
-//! them is. Halving stops at 1/16: below that the direction is poor, and the step is cut by
-//! the load stepping instead (the last resort).
+//! them is. Halving stops at 1/16: below that the direction is poor. When the step's best
+//! merit has not improved for `STALL` Newton points, the corrections are taken in full
+//! until it does: short steps let the statuses swing in place, semi-smooth Newton's own
+//! steps settle them. The load stepping cuts the step at the iteration limit or on
+//! divergence (the last resort).
 
 use super::newton::Nonlinear;
 use crate::error::Result;
 
-/// Newton points in a row that do not lower the step's best merit, line searches having
-/// shortened corrections, before the step is given up (cut).
-pub const STALL: usize = 8;
+/// Newton points in a row that do not lower the step's best merit before the corrections
+/// are taken in full (semi-smooth Newton's own steps) until one does.
+pub const STALL: usize = 4;
 /// How many of the step's last Newton merits the acceptance test compares with.
 pub const MEMORY: usize = 3;
 /// Sufficient decrease (Armijo) on the merit.
