@@ -236,7 +236,7 @@ fn node_to_segment_linear_cells() {
     check(CellKind::Quad4, "node-to-segment", false);
 }
 
-/// (On 150 / 130 linear-mesh-sized quadratic cells, 108 s, this failed at t = 0.0005 before
+/// (With quadratic cells on the linear cases' 150 / 130 across, 108 s, this failed at t = 0.0005 before
 /// the line search gave way to full corrections on a stall: pressed from every point
 /// closed, the statuses swung while the line search kept 1/16 of each correction.)
 #[test]
