@@ -549,8 +549,8 @@ pub fn solve_into(
             // step's last few Newton points is shortened, each trial point with its own
             // statuses. (Not where the friction backtracking above already applies.)
             let mut step_length = None;
-            // Once half the stall allowance has passed without progress, the corrections
-            // are taken in full: a line search that keeps a sliver of each lets the statuses
+            // Once `STALL` Newton points have passed without progress, the corrections are
+            // taken in full: a line search that keeps a sliver of each lets the statuses
             // swing in place (a quadratic surface pressed with friction from every point
             // closed: no progress at 1/16 of each correction, the step cut to failure),
             // while the full semi-smooth steps settle them (tests/cattaneo_mindlin.rs).
