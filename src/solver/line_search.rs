@@ -8,18 +8,22 @@
 //! compared with the largest merit of the step's last few Newton points, so that the
 //! residual of a contact zone growing from a first touch, which rises and falls while the
 //! statuses settle, is not cut back; only a correction that makes things worse than all of
-//! them is. Halving stops at 1/16: below that the direction is poor. When the step's best
-//! merit has not improved for `STALL` Newton points, the corrections are taken in full
-//! until it does: short steps let the statuses swing in place, semi-smooth Newton's own
-//! steps settle them. The load stepping cuts the step at the iteration limit or on
-//! divergence (the last resort).
+//! them is. Halving stops at 1/16: below that the direction is poor. With friction, when
+//! the step's best merit has not improved for `FULL_AFTER_STALL` Newton points, the
+//! corrections are taken in full until it does: short steps let the stick and contact
+//! statuses swing in place, semi-smooth Newton's own steps settle them. Otherwise the
+//! step is cut after `STALL` points without progress (the load stepping is the last
+//! resort).
 
 use super::newton::Nonlinear;
 use crate::error::Result;
 
-/// Newton points in a row that do not lower the step's best merit before the corrections
-/// are taken in full (semi-smooth Newton's own steps) until one does.
-pub const STALL: usize = 4;
+/// Newton points in a row that do not lower the step's best merit, line searches having
+/// shortened corrections, before the step is given up (cut).
+pub const STALL: usize = 8;
+/// With friction: Newton points in a row that do not lower the step's best merit before
+/// the corrections are taken in full (semi-smooth Newton's own steps) until one does.
+pub const FULL_AFTER_STALL: usize = 4;
 /// How many of the step's last Newton merits the acceptance test compares with.
 pub const MEMORY: usize = 3;
 /// Sufficient decrease (Armijo) on the merit.

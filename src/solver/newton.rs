@@ -549,12 +549,15 @@ pub fn solve_into(
             // step's last few Newton points is shortened, each trial point with its own
             // statuses. (Not where the friction backtracking above already applies.)
             let mut step_length = None;
-            // Once `STALL` Newton points have passed without progress, the corrections are
-            // taken in full: a line search that keeps a sliver of each lets the statuses
-            // swing in place (a quadratic surface pressed with friction from every point
-            // closed: no progress at 1/16 of each correction, the step cut to failure),
-            // while the full semi-smooth steps settle them (tests/cattaneo_mindlin.rs).
-            let searching = problem.line_search() && !merits.stalled(line_search::STALL);
+            // With friction, once `FULL_AFTER_STALL` Newton points have passed without
+            // progress, the corrections are taken in full: a line search that keeps a sliver
+            // of each lets the statuses swing in place (a quadratic surface pressed with
+            // friction from every point closed: no progress at 1/16 of each correction, the
+            // step cut to failure), while the full semi-smooth steps settle them
+            // (tests/cattaneo_mindlin.rs). (Frictionless, the full steps took a longer path:
+            // tests/hertz_pair.rs, mortar with large kinematics.)
+            let searching = problem.line_search()
+                && !(backtracking && merits.stalled(line_search::FULL_AFTER_STALL));
             if let (Some(dx), Some(reference), false, true) =
                 (&last_dx, merits.reference(), resolve, searching)
             {
@@ -640,6 +643,16 @@ pub fn solve_into(
             if !resolve && residuals.len() > 3 && rel > 1e3 * best && rel >= recent {
                 let why = diagnosis(problem, &r, &status_counts);
                 failure = Some(format!("divergence (residual {rel:.1e}){why}"));
+                break;
+            }
+            // Stalled: line searches have been shortening corrections and the last Newton
+            // points do not improve on the step's best; a smaller step will do better.
+            if step_length.is_some() && merits.stalled(line_search::STALL) {
+                let why = diagnosis(problem, &r, &status_counts);
+                failure = Some(format!(
+                    "no progress in {} iterations with line searches (residual {rel:.1e}){why}",
+                    line_search::STALL
+                ));
                 break;
             }
             // Converged: residual below the tolerance, or (with no load to measure it
