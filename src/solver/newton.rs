@@ -441,10 +441,11 @@ pub fn solve_into(
         let mut linearised_seen: Vec<u64> = vec![];
         // the plain Newton iterate a re-solve replaced
         let mut before_resolve: Option<Vec<f64>> = None;
-        // the plain Newton iterate (and its correction) that started this point's
-        // re-solves; whether re-solves are off for this step, and whether the current
-        // point is a plain iterate taken back from swinging re-solves (see below)
-        let mut plain_iterate: Option<(Vec<f64>, Vec<f64>)> = None;
+        // the correction of the plain Newton iterate that started this point's re-solves
+        // (the iterate is the point plus it); whether re-solves are off for this step, and
+        // whether the current point is a plain iterate taken back from swinging re-solves
+        // (see below)
+        let mut plain_correction: Option<Vec<f64>> = None;
         let mut first_changes = 0;
         let mut resolves_off = false;
         let mut taken_back = false;
@@ -796,8 +797,10 @@ pub fn solve_into(
             // mesh's 7, 1, 2, 2 settle): Newton goes on from the plain iterate, as without
             // re-solves, and takes no more in this step.
             if resolve && changes > before && 2 * changes > first_changes {
-                if let Some((plain, dx)) = plain_iterate.take() {
-                    x = plain;
+                if let Some(dx) = plain_correction.take() {
+                    for ((xi, &x0), d) in x.iter_mut().zip(&x_lin).zip(&dx) {
+                        *xi = x0 + d;
+                    }
                     last_dx = Some(dx);
                     changes = problem.update_status(&x, lambda)?;
                     resolves_off = true;
@@ -827,14 +830,14 @@ pub fn solve_into(
             if resolve {
                 resolves += 1;
                 if resolves == 1 {
-                    plain_iterate = Some((x.clone(), r.clone()));
+                    plain_correction = Some(r.clone());
                     first_changes = changes;
                 }
                 before_resolve = Some(std::mem::replace(&mut x, x_lin));
             } else {
                 resolves = 0;
                 before_resolve = None;
-                plain_iterate = None;
+                plain_correction = None;
             }
         }
         report.total_iterations += step.iterations.len() - 1;
