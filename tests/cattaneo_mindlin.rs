@@ -16,8 +16,7 @@
 mod common;
 
 use common::patches::Patches;
-use common::{bodies, case_head, group_sum};
-use std::collections::HashMap;
+use common::{bodies, case_head, group_sum, slave_rows};
 use std::f64::consts::PI;
 use tribo::case::{run, schema::CaseFile};
 use tribo::mesh::{CellKind, Mesh};
@@ -130,14 +129,8 @@ fn check(kind: CellKind, formulation: &str, slave_upper: bool) {
     // P, Q per unit length from the reactions where the upper body's top is moved
     let (rx, ry) = group_sum(&mesh, "UpperFar", &out.reactions);
     let (p_total, q_total) = (ry.abs(), rx.abs());
-    let pressure: HashMap<usize, f64> = out.contact_pressure[0].iter().copied().collect();
-    let (_, shear) = &out.contact_shear[0];
     // (x, p, t) of the slave nodes
-    let mut rows: Vec<(f64, f64, f64)> = shear
-        .iter()
-        .map(|&(n, t)| (mesh.coords[n][0], pressure[&n], t))
-        .collect();
-    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (_, rows) = slave_rows(&mesh, &out, 0);
     let side = |sign: f64| -> Vec<(f64, f64, f64)> {
         rows.iter()
             .filter(|r| sign * r.0 >= 0.0)

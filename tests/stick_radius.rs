@@ -6,6 +6,9 @@
 //! [2.8125, 3.0] at 0.1875 ([2.719, 2.8125] at 0.09375, 9 s): brackets nested, their width
 //! the node spacing, so the stick radius converges (to about 0.82 a) at the rate of h.
 
+mod common;
+
+use common::slave_rows;
 use std::path::Path;
 use tribo::case;
 use tribo::case::schema::CaseFile;
@@ -50,14 +53,7 @@ vtu = false
     let c: CaseFile = toml::from_str(&text).unwrap();
     let mesh = case::build_mesh(&c.mesh, Path::new("")).unwrap();
     let out = case::run(&c, &mesh, false).unwrap();
-    let p: std::collections::HashMap<usize, f64> =
-        out.contact_pressure[0].iter().copied().collect();
-    let (mu, shear) = &out.contact_shear[0];
-    let mut rows: Vec<(f64, f64, f64)> = shear
-        .iter()
-        .map(|&(n, t)| (mesh.coords[n][0], p[&n], t))
-        .collect();
-    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    let (mu, rows) = slave_rows(&mesh, &out, 0);
     let pmax = rows.iter().fold(0.0f64, |m, r| m.max(r.1));
     let loaded = |r: &(f64, f64, f64)| r.1 > 1e-6 * pmax;
     let (mut stick, mut next) = (0.0, 0.0);

@@ -179,3 +179,21 @@ pub fn bodies_joined_at(parts: &[(&str, &Mesh)], at: [f64; 2]) -> Mesh {
     }
     b.finish().unwrap()
 }
+
+/// The slave nodes of contact pair `pair` in a run's outcome as (x, pressure, shear),
+/// sorted by x, with the pair's friction coefficient.
+pub fn slave_rows(
+    mesh: &Mesh,
+    out: &tribo::case::Outcome,
+    pair: usize,
+) -> (f64, Vec<(f64, f64, f64)>) {
+    let pressure: std::collections::HashMap<usize, f64> =
+        out.contact_pressure[pair].iter().copied().collect();
+    let (mu, shear) = &out.contact_shear[pair];
+    let mut rows: Vec<(f64, f64, f64)> = shear
+        .iter()
+        .map(|&(n, t)| (mesh.coords[n][0], pressure[&n], t))
+        .collect();
+    rows.sort_by(|a, b| a.0.total_cmp(&b.0));
+    (*mu, rows)
+}
