@@ -192,6 +192,8 @@ impl InterfaceSolver {
     /// Factorises the blocks (in parallel) and the interface matrix of `a` (the pattern
     /// given to `new`).
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+        // the last LU goes before the new interface matrix comes (k² each)
+        self.lu = DenseLu::default();
         self.blocks
             .par_iter_mut()
             .map(|b| b.factor(a))
@@ -235,8 +237,7 @@ impl InterfaceSolver {
                 self.kept.push(i);
             }
         }
-        let kept = &self.kept;
-        self.lu.factor(kept.len(), |i, j| t[(kept[i], kept[j])]);
+        self.lu.factor(t, &self.kept);
         Ok(())
     }
 
@@ -330,9 +331,11 @@ impl InterfaceSolver {
 }
 
 /// Dense LU with partial pivoting (sequential: faster than two threads at these sizes,
-/// and independent of the machine).
+/// and independent of the machine), in place in the interface matrix: its leading k × k
+/// block holds the factors.
 struct DenseLu {
     lu: Mat<f64>,
+    k: usize,
     perm: Vec<usize>,
     perm_inv: Vec<usize>,
 }
@@ -343,6 +346,7 @@ impl Default for DenseLu {
     fn default() -> Self {
         DenseLu {
             lu: Mat::zeros(0, 0),
+            k: 0,
             perm: vec![],
             perm_inv: vec![],
         }
@@ -350,8 +354,18 @@ impl Default for DenseLu {
 }
 
 impl DenseLu {
-    fn factor(&mut self, k: usize, value: impl Fn(usize, usize) -> f64) {
-        self.lu = Mat::from_fn(k, k, value);
+    /// Factorises the rows and columns `kept` (increasing) of `t`, which it takes: they
+    /// are first packed into its leading block, in place (column by column, each entry
+    /// read from at or after where it is written, so from nothing overwritten yet).
+    fn factor(&mut self, mut t: Mat<f64>, kept: &[usize]) {
+        let k = kept.len();
+        for (j, &kj) in kept.iter().enumerate() {
+            for (i, &ki) in kept.iter().enumerate() {
+                t[(i, j)] = t[(ki, kj)];
+            }
+        }
+        self.lu = t;
+        self.k = k;
         self.perm.resize(k, 0);
         self.perm_inv.resize(k, 0);
         let mut mem = MemBuffer::new(lu_factor::lu_in_place_scratch::<usize, f64>(
@@ -361,7 +375,7 @@ impl DenseLu {
             Default::default(),
         ));
         lu_factor::lu_in_place(
-            self.lu.as_mut(),
+            self.lu.as_mut().submatrix_mut(0, 0, k, k),
             &mut self.perm,
             &mut self.perm_inv,
             DENSE_PAR,
@@ -371,7 +385,8 @@ impl DenseLu {
     }
 
     fn solve(&self, rhs: &mut Mat<f64>) {
-        let k = self.lu.nrows();
+        let k = self.k;
+        let lu = self.lu.as_ref().submatrix(0, 0, k, k);
         let perm = PermRef::new_checked(&self.perm, &self.perm_inv, k);
         let mut mem = MemBuffer::new(lu_solve::solve_in_place_scratch::<usize, f64>(
             k,
@@ -379,8 +394,8 @@ impl DenseLu {
             DENSE_PAR,
         ));
         lu_solve::solve_in_place(
-            self.lu.as_ref(),
-            self.lu.as_ref(),
+            lu,
+            lu,
             perm,
             rhs.as_mut(),
             DENSE_PAR,
@@ -439,9 +454,10 @@ impl Block {
                 Some(source[q])
             })
             .collect();
+        // (pattern only: each factorisation reads the values of A through `source`)
         let local = SparseMatrix {
             n: m,
-            values: vec![0.0; row_idx.len()],
+            values: vec![],
             col_ptr,
             row_idx,
             pattern_stamp: 0,
