@@ -202,6 +202,8 @@ impl CoupledMatrix {
     /// Each column merges the solid's sorted rows, the sorted contributed rows and the
     /// diagonal, recording where each solid entry lands.
     fn rebuild(&mut self, solid: &SparseMatrix, n: usize, key: &[(usize, usize)]) {
+        // the old pattern and values go before the new ones come
+        self.matrix = SparseMatrix::default();
         let extra = sorted_unique(n, key.iter().flat_map(|&(c, r)| [(c, r), (r, c)]));
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);

@@ -56,7 +56,8 @@ struct Block {
     ldlt: OrderedLdlt,
     shift: f64,
     /// Of the last factorisation: the pivots of the interior (in the factorised order),
-    /// the trailing unit lower triangle L_ΓΓ, and S'_b − σI = L_ΓΓ D_Γ L_ΓΓᵀ − σI.
+    /// the trailing unit lower triangle L_ΓΓ, and S'_b − σI = L_ΓΓ D_Γ L_ΓΓᵀ − σI (kept:
+    /// an active-set re-solve changes T's contact terms only, and assembles T again).
     pivots: Vec<f64>,
     lgg: Mat<f64>,
     schur: Mat<f64>,
@@ -497,6 +498,9 @@ impl Block {
         }
         self.factored.clear(); // until this factorisation succeeds
         self.last_forward = None;
+        // the dense matrices of the last factorisation go before the new ones come
+        self.lgg = Mat::zeros(0, 0);
+        self.schur = Mat::zeros(0, 0);
         // σ of the size of the block's largest diagonal entry: the trailing pivots are
         // then σ − (a positive semi-definite term), negative and well scaled.
         let diag = self
@@ -515,12 +519,7 @@ impl Block {
         })?;
         let k = self.unknowns.len() - self.interior;
         let (l, d) = self.ldlt.trailing_block(k);
-        let mut ld = l.clone();
-        for (j, &dj) in d.iter().enumerate() {
-            for i in j..k {
-                ld[(i, j)] *= dj;
-            }
-        }
+        let ld = Mat::from_fn(k, k, |i, j| if i >= j { l[(i, j)] * d[j] } else { 0.0 });
         // S' = L (D Lᵀ), symmetric: its lower half from the two triangles (a sixth of the
         // flops of the full product), then mirrored
         self.schur = Mat::zeros(k, k);

@@ -191,7 +191,12 @@ impl LinearSolver {
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    self.ldlt = Some(Factorisation::new(a, self.n_primal, &self.transpose)?);
+                    let f = Factorisation::new(a, self.n_primal, &self.transpose)?;
+                    if let Factorisation::Interface(_) = f {
+                        // (only the analysis of the interface needs it)
+                        self.transpose = vec![];
+                    }
+                    self.ldlt = Some(f);
                     self.symbolic_count += 1;
                 }
                 if self.skip_reuse > 0 {
