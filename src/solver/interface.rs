@@ -45,11 +45,8 @@ struct Block {
     interior: usize,
     /// Position in the interface of each of the block's interface unknowns.
     gamma: Vec<usize>,
-    /// The block's matrix pattern (local numbering) and, per entry, its position in A
-    /// (NONE: the shifted diagonal of an interface unknown).
-    local: SparseMatrix,
-    source: Vec<usize>,
-    /// The values of A the last factorisation was of (per `source` entry).
+    /// The values of A the last factorisation was of (per factorised entry, see
+    /// `Block::factor`).
     factored: Vec<f64>,
     /// Positions in A of the interior unknowns' diagonal entries (they set the shift).
     diagonal: Vec<usize>,
@@ -455,7 +452,8 @@ impl Block {
                 Some(source[q])
             })
             .collect();
-        // (pattern only: each factorisation reads the values of A through `source`)
+        // (pattern only: each factorisation reads the values of A, the factor's entries
+        // labelled by their positions there)
         let local = SparseMatrix {
             n: m,
             values: vec![],
@@ -465,14 +463,13 @@ impl Block {
         };
         let mut fwd = leading_order(&local, interior)?;
         fwd.extend(interior..m);
-        let ldlt = OrderedLdlt::new(&local, fwd)?;
+        let mut ldlt = OrderedLdlt::new(&local, fwd)?;
+        ldlt.relabel_origins(|p| source[p]);
         let k = m - interior;
         Ok(Block {
             unknowns,
             interior,
             gamma,
-            local,
-            source,
             factored: vec![],
             diagonal,
             ldlt,
@@ -486,10 +483,11 @@ impl Block {
 
     fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         // Unchanged values (a Newton iteration that updated the contact terms only, which
-        // live in Γ × Γ): the factorisation stands.
-        let unchanged = self.factored.len() == self.source.len()
-            && self
-                .source
+        // live in Γ × Γ): the factorisation stands. Each factorised entry is labelled by its
+        // position in A (NONE: the shifted diagonal of an interface unknown).
+        let origins = self.ldlt.origins();
+        let unchanged = self.factored.len() == origins.len()
+            && origins
                 .iter()
                 .zip(&self.factored)
                 .all(|(&p, &v)| p == NONE || a.values[p] == v);
@@ -509,14 +507,9 @@ impl Block {
             .map(|&p| a.values[p].abs())
             .fold(0.0f64, f64::max);
         self.shift = -diag.max(f64::MIN_POSITIVE);
-        let (source, shift) = (&self.source, self.shift);
-        self.ldlt.factor_with(&self.local, |p, _, _| {
-            if source[p] == NONE {
-                shift
-            } else {
-                a.values[source[p]]
-            }
-        })?;
+        let shift = self.shift;
+        self.ldlt
+            .factor_with(|p, _, _| if p == NONE { shift } else { a.values[p] })?;
         let k = self.unknowns.len() - self.interior;
         let (l, d) = self.ldlt.trailing_block(k);
         let ld = Mat::from_fn(k, k, |i, j| if i >= j { l[(i, j)] * d[j] } else { 0.0 });
@@ -544,8 +537,9 @@ impl Block {
         let mut pivots = self.ldlt.pivots();
         pivots.truncate(self.interior);
         self.pivots = pivots;
+        let origins = self.ldlt.origins();
         self.factored.extend(
-            self.source
+            origins
                 .iter()
                 .map(|&p| if p == NONE { 0.0 } else { a.values[p] }),
         );

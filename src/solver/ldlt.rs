@@ -28,16 +28,15 @@ pub struct OrderedLdlt {
     /// P A Pᵀ, lower triangle: its pattern and values.
     permuted: SymbolicSparseColMat<usize>,
     permuted_values: Vec<f64>,
-    /// For each entry of A, its position in `permuted` (NONE if it lands above the diagonal).
-    map: Vec<usize>,
+    /// For each entry of `permuted`, the entry of A it comes from (its lower one of each
+    /// symmetric pair): half the size of a map the other way.
+    origin: Vec<usize>,
     symbolic: SymbolicCholesky<usize>,
     values: Vec<f64>,
     /// Factorisation and solve workspaces, kept between factorisations.
     scratch: MemBuffer,
     solve_scratch: MemBuffer,
 }
-
-const NONE: usize = usize::MAX;
 
 /// AMD on the graph whose vertex j has the sorted neighbours `idx[ptr[j]..ptr[j + 1]]`
 /// (itself included). Unknowns with the same adjacency (the two dofs of a node) are
@@ -204,7 +203,7 @@ impl OrderedLdlt {
         // pattern of P A Pᵀ (lower): entry p = (r, c) of A goes to (inv r, inv c) if
         // inv r ≥ inv c, so column j of it holds only entries of A's column fwd[j]: built
         // column by column, each sorted (a few dozen entries)
-        let mut map = vec![NONE; a.nnz()];
+        let mut origin = Vec::with_capacity(a.nnz() / 2 + n);
         let mut col_ptr = Vec::with_capacity(n + 1);
         col_ptr.push(0);
         let mut row_idx = Vec::with_capacity(a.nnz() / 2 + n);
@@ -219,7 +218,7 @@ impl OrderedLdlt {
             }
             col.sort_unstable();
             for &(r, p) in &col {
-                map[p] = row_idx.len();
+                origin.push(p);
                 row_idx.push(r);
             }
             col_ptr.push(row_idx.len());
@@ -258,7 +257,7 @@ impl OrderedLdlt {
             fwd,
             permuted,
             permuted_values: vec![0.0; nnz],
-            map,
+            origin,
             values: vec![0.0; symbolic.len_val()],
             symbolic,
             scratch,
@@ -267,18 +266,14 @@ impl OrderedLdlt {
     }
 
     /// Factorises the symmetric matrix whose lower triangle (in the factorised order) takes
-    /// `value(p, row, col)` at each entry p = (row, col) of A's pattern that lands there.
-    pub fn factor_with(
-        &mut self,
-        a: &SparseMatrix,
-        value: impl Fn(usize, usize, usize) -> f64,
-    ) -> Result<()> {
-        for col in 0..a.n {
-            for p in a.col_ptr[col]..a.col_ptr[col + 1] {
-                let q = self.map[p];
-                if q != NONE {
-                    self.permuted_values[q] = value(p, a.row_idx[p], col);
-                }
+    /// `value(p, row, col)` at each entry p = (row, col) of the analysed pattern that lands
+    /// there (p as relabelled by `relabel_origins`).
+    pub fn factor_with(&mut self, value: impl Fn(usize, usize, usize) -> f64) -> Result<()> {
+        let permuted = self.permuted.as_ref();
+        for j in 0..self.fwd.len() {
+            for q in permuted.col_range(j) {
+                let row = self.fwd[permuted.row_idx()[q]];
+                self.permuted_values[q] = value(self.origin[q], row, self.fwd[j]);
             }
         }
         self.symbolic
@@ -298,6 +293,19 @@ impl OrderedLdlt {
                 ))
             })?;
         Ok(())
+    }
+
+    /// The entry of the analysed pattern each factorised entry comes from.
+    pub fn origins(&self) -> &[usize] {
+        &self.origin
+    }
+
+    /// Renames the entries of the analysed pattern (what `factor_with` and `origins` give):
+    /// a caller that reads its values elsewhere drops its copy of the pattern.
+    pub fn relabel_origins(&mut self, new_label: impl Fn(usize) -> usize) {
+        for p in &mut self.origin {
+            *p = new_label(*p);
+        }
     }
 
     /// Solves with the last factorisation, in place.
@@ -471,7 +479,7 @@ impl SaddleLdlt {
         // onto the constraint rows. With friction this is a better preconditioner for GMRES
         // on the exact matrix than the symmetric part (SSNP154 D: 213 -> 108 iterations).
         let np = self.np;
-        self.ldlt.factor_with(a, |p, row, col| {
+        self.ldlt.factor_with(|p, row, col| {
             if row < np && col < np {
                 0.5 * (a.values[p] + a.values[transpose[p]])
             } else if row <= col {
@@ -553,7 +561,7 @@ mod tests {
             .chain(n..total)
             .collect();
         let mut f = OrderedLdlt::new(&a, fwd.clone()).unwrap();
-        f.factor_with(&a, |p, _, _| a.values[p]).unwrap();
+        f.factor_with(|p, _, _| a.values[p]).unwrap();
         let (l, d) = f.trailing_block(k);
         // dense P A Pᵀ and its Schur complement on the last k unknowns
         let mut dense = Mat::<f64>::zeros(total, total);
