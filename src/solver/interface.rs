@@ -77,9 +77,11 @@ pub struct InterfaceSolver {
     decoupled: Vec<(usize, f64)>,
 }
 
-/// The interface of `a` (first `np` unknowns primal): the multipliers and the primal
-/// unknowns that share an entry with one, or whose entries are not symmetric.
-fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Vec<bool> {
+/// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
+/// transpose of entry p): the multipliers and the primal unknowns that share an entry with
+/// one, or whose entries are not symmetric. None when it is too large for a dense solve
+/// (or empty).
+pub fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Option<Vec<bool>> {
     let mut gamma = vec![false; a.n];
     for c in 0..a.n {
         for p in a.col_ptr[c]..a.col_ptr[c + 1] {
@@ -91,20 +93,15 @@ fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Vec<bool> {
             }
         }
     }
-    gamma
+    let k = gamma.iter().filter(|&&g| g).count();
+    (k > 0 && k <= MAX_INTERFACE && 4 * k <= a.n).then_some(gamma)
 }
 
 impl InterfaceSolver {
-    /// Analyses `a` (structurally symmetric; `transpose[p]` the position of the transpose
-    /// of entry p). None when the interface is too large for a dense solve or does not
-    /// split the displacements from the multipliers.
-    pub fn new(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Result<Option<Self>> {
+    /// Analyses `a` (structurally symmetric) with its interface `in_gamma` (`interface_of`).
+    pub fn new(a: &SparseMatrix, in_gamma: Vec<bool>) -> Result<Self> {
         let n = a.n;
-        let in_gamma = interface_of(a, np, transpose);
         let gamma: Vec<usize> = (0..n).filter(|&i| in_gamma[i]).collect();
-        if gamma.is_empty() || gamma.len() > MAX_INTERFACE || 4 * gamma.len() > n {
-            return Ok(None);
-        }
         let mut gamma_pos = vec![NONE; n];
         for (k, &g) in gamma.iter().enumerate() {
             gamma_pos[g] = k;
@@ -176,7 +173,7 @@ impl InterfaceSolver {
                 }
             }
         }
-        Ok(Some(InterfaceSolver {
+        Ok(InterfaceSolver {
             n,
             gamma,
             blocks,
@@ -184,7 +181,7 @@ impl InterfaceSolver {
             lu: DenseLu::default(),
             kept: vec![],
             decoupled: vec![],
-        }))
+        })
     }
 
     /// Factorises the blocks (in parallel) and the interface matrix of `a` (the pattern
@@ -590,9 +587,8 @@ mod tests {
         let len = 30;
         let a = two_bodies(len);
         let t = transpose_positions(&a);
-        let mut s = InterfaceSolver::new(&a, 2 * len, &t)
-            .unwrap()
-            .expect("small interface");
+        let in_gamma = interface_of(&a, 2 * len, &t).expect("small interface");
+        let mut s = InterfaceSolver::new(&a, in_gamma).unwrap();
         assert_eq!(s.blocks.len(), 2, "the chains are two blocks");
         assert_eq!(
             s.gamma.len(),
@@ -646,6 +642,6 @@ mod tests {
         let len = 3;
         let a = two_bodies(len);
         let t = transpose_positions(&a);
-        assert!(InterfaceSolver::new(&a, 2 * len, &t).unwrap().is_none());
+        assert!(interface_of(&a, 2 * len, &t).is_none());
     }
 }

@@ -5,7 +5,7 @@
 //! of the last pattern).
 
 use super::gmres;
-use super::interface::InterfaceSolver;
+use super::interface::{interface_of, InterfaceSolver};
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
@@ -22,9 +22,13 @@ enum Factorisation {
 }
 
 impl Factorisation {
-    fn new(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Result<Self> {
-        Ok(match InterfaceSolver::new(a, np, transpose)? {
-            Some(s) => Factorisation::Interface(Box::new(s)),
+    /// `transpose` is emptied when the interface path is taken: only its choice reads it.
+    fn new(a: &SparseMatrix, np: usize, transpose: &mut Vec<usize>) -> Result<Self> {
+        Ok(match interface_of(a, np, transpose) {
+            Some(in_gamma) => {
+                *transpose = vec![];
+                Factorisation::Interface(Box::new(InterfaceSolver::new(a, in_gamma)?))
+            }
             None => Factorisation::Saddle(Box::new(SaddleLdlt::new(a, np)?)),
         })
     }
@@ -191,11 +195,7 @@ impl LinearSolver {
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    let f = Factorisation::new(a, self.n_primal, &self.transpose)?;
-                    if let Factorisation::Interface(_) = f {
-                        // (only the analysis of the interface needs it)
-                        self.transpose = vec![];
-                    }
+                    let f = Factorisation::new(a, self.n_primal, &mut self.transpose)?;
                     self.ldlt = Some(f);
                     self.symbolic_count += 1;
                 }
