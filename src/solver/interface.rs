@@ -416,8 +416,13 @@ impl Block {
         // interior and within the interface, so each column comes out sorted as its
         // interior rows, then its interface rows (of an interior column) or its diagonal
         // (of an interface column).
-        let mut source = Vec::with_capacity(a.nnz() / 2);
-        let mut row_idx = Vec::with_capacity(a.nnz() / 2);
+        // (at most the entries of the block's columns: no more reserved than that)
+        let bound: usize = unknowns
+            .iter()
+            .map(|&c| a.col_ptr[c + 1] - a.col_ptr[c] + 1)
+            .sum();
+        let mut source = Vec::with_capacity(bound);
+        let mut row_idx = Vec::with_capacity(bound);
         let mut col_ptr = Vec::with_capacity(m + 1);
         col_ptr.push(0);
         for (lc, &c) in unknowns.iter().enumerate() {
