@@ -79,8 +79,8 @@ pub struct InterfaceSolver {
 
 /// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
 /// transpose of entry p): the multipliers and the primal unknowns that share an entry with
-/// one, or whose entries are not symmetric. None when it is too large for a dense solve
-/// (or empty).
+/// one, or whose entries are not symmetric. None when it is empty, too large for a dense
+/// solve, or more than a quarter of the unknowns (then it does not split the bodies).
 pub fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Option<Vec<bool>> {
     let mut gamma = vec![false; a.n];
     for c in 0..a.n {

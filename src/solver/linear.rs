@@ -195,8 +195,7 @@ impl LinearSolver {
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    let f = Factorisation::new(a, self.n_primal, &mut self.transpose)?;
-                    self.ldlt = Some(f);
+                    self.ldlt = Some(Factorisation::new(a, self.n_primal, &mut self.transpose)?);
                     self.symbolic_count += 1;
                 }
                 if self.skip_reuse > 0 {
