@@ -54,7 +54,10 @@ fn check_from(
     );
     let case: CaseFile = toml::from_str(&text).unwrap();
     let solid = build_problem(&case, &mesh).unwrap();
-    let pairs = build_pairs(&case, &mesh).unwrap();
+    let mut pairs = build_pairs(&case, &mesh).unwrap();
+    for pair in pairs.iter_mut() {
+        pair.set_exact_tangent(true);
+    }
     let mut p = ContactProblem::new(solid, pairs);
     let n = p.num_unknowns();
     let nf = p.num_primal();

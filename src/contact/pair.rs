@@ -106,4 +106,8 @@ pub trait ContactPair {
     fn friction(&self) -> f64 {
         0.0
     }
+    /// Whether the tangent is the exact derivative of the residual everywhere, rather than
+    /// only at solutions (where a formulation drops terms that vanish there: mortar's
+    /// augmentation curvature). For finite-difference checks of the tangent.
+    fn set_exact_tangent(&mut self, _exact: bool) {}
 }

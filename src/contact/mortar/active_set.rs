@@ -6,17 +6,15 @@ use super::geometry::cross;
 use super::Mortar;
 use crate::mesh::Mesh;
 
-/// The weighted gaps and slips at the point of the last large-kinematics evaluation, with
-/// their derivatives by displacement (sparse rows over u's dofs): the first-order model of
-/// the constraints that the Newton correction from that point solves.
+/// The weighted gaps at the point of the last large-kinematics evaluation, with their
+/// derivatives by displacement (sparse rows over u's dofs): the first-order model of the
+/// contact constraints that the Newton correction from that point solves.
 pub(super) struct Linearisation {
     pub u0: Vec<f64>,
     pub g: Vec<f64>,
     pub d: Vec<f64>,
     pub facing: Vec<bool>,
-    pub slip: Vec<f64>,
     pub dg: Vec<Vec<(usize, f64)>>,
-    pub ds: Vec<Vec<(usize, f64)>>,
 }
 
 impl Linearisation {
@@ -36,11 +34,13 @@ impl Linearisation {
 }
 
 impl Mortar {
-    /// Active set (and friction branches) of the linearised problem at u: the nonlinear
-    /// criterion with the gaps and slips of the last evaluation extended linearly. Large
-    /// kinematics far from the solution (a first iterate from a point contact pushes a
-    /// body many cells deep) distorts the cells where the nonlinear gaps are measured;
-    /// the linearised ones are those the correction itself satisfies.
+    /// Active set of the linearised problem at u: the nonlinear criterion with the gaps of
+    /// the last evaluation extended linearly. Large kinematics far from the solution (a
+    /// first iterate from a point contact pushes a body many cells deep) distorts the
+    /// cells where the nonlinear gaps are measured; the linearised ones are those the
+    /// correction itself satisfies. The friction branches are left to the iterate's own
+    /// update: re-solved here too, they cycled at the ends of a shoe sliding round a ring
+    /// (tests/history.rs: step cuts, 67 load steps for 60).
     pub(super) fn statuses_linearised(&mut self, u: &[f64], lam: &[f64]) -> Option<usize> {
         let guard = self.linearisation.lock().unwrap();
         let lin = guard.as_ref()?;
@@ -49,7 +49,6 @@ impl Mortar {
             return None;
         }
         let g = lin.extend(&lin.g, &lin.dg, u);
-        let sl = lin.extend(&lin.slip, &lin.ds, u);
         let (d, facing) = (lin.d.clone(), lin.facing.clone());
         drop(guard);
         // Nodes to release (negative pressure) go first, those to close (penetrating)
@@ -64,17 +63,6 @@ impl Mortar {
             if proposed[j] != self.active[j] && (!releases || !proposed[j]) {
                 changes += 1;
                 self.active[j] = proposed[j];
-            }
-        }
-        if let Some(mu) = self.friction {
-            self.law.resize(nm, super::friction::Branch::Free);
-            let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
-            for j in 0..nm {
-                let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
-                if law != self.law[j] {
-                    changes += 1;
-                    self.law[j] = law;
-                }
             }
         }
         Some(changes)

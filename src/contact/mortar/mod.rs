@@ -82,6 +82,8 @@ pub struct Mortar {
     pattern_sent: AtomicUsize,
     /// Whether `contribute` writes the tangent (see `ContactPair::set_tangent_wanted`).
     tangent_wanted: AtomicBool,
+    /// Whether the tangent keeps the augmentation's curvature (see `exact_tangent`).
+    exact_augmentation: bool,
     /// The candidates at the start of the load step (restored when it is cut).
     saved_candidates: Vec<Vec<usize>>,
     active: Vec<bool>,
@@ -214,6 +216,7 @@ impl Mortar {
             pattern_generation: 0,
             pattern_sent: AtomicUsize::new(usize::MAX),
             tangent_wanted: AtomicBool::new(true),
+            exact_augmentation: false,
             candidates,
             active: vec![],
             saved: vec![],
@@ -435,7 +438,7 @@ impl ContactPair for Mortar {
             linear_tangent(&terms, self.c, &active, &d, &law, ndof + mult_base, nm, k);
         } else {
             let rows = ndof + mult_base;
-            let (dg, ds) = self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
+            let dg = self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
             let mut cover = vec![0.0; nm];
             for t in &terms {
                 for &(j, v) in &t.cover {
@@ -448,9 +451,7 @@ impl ContactPair for Mortar {
                 g,
                 d,
                 facing,
-                slip: sl,
                 dg,
-                ds,
             });
         }
         // pattern: every dof a cell may read couples with every dof and multiplier of its
@@ -672,6 +673,9 @@ impl ContactPair for Mortar {
     }
     fn friction(&self) -> f64 {
         self.friction.unwrap_or(0.0)
+    }
+    fn set_exact_tangent(&mut self, exact: bool) {
+        self.exact_augmentation = exact;
     }
     fn reference_normals(&self) -> bool {
         self.small
