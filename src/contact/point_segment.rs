@@ -1375,6 +1375,18 @@ pub fn candidates_at(
     master: &Surface,
     margin: f64,
 ) -> Vec<Vec<usize>> {
+    candidates_within(mesh, u, slave, master, margin, 0.0)
+}
+
+/// The same, the boxes grown by at least `reach` (a distance).
+pub fn candidates_within(
+    mesh: &Mesh,
+    u: Option<&[f64]>,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+    reach: f64,
+) -> Vec<Vec<usize>> {
     let bbox = |c: usize| {
         let mut lo = [f64::MAX; 2];
         let mut hi = [f64::MIN; 2];
@@ -1398,7 +1410,7 @@ pub fn candidates_at(
                 .iter()
                 .enumerate()
                 .filter(|(_, (lo, hi))| {
-                    let r = margin * ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]));
+                    let r = (margin * ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]))).max(reach);
                     (0..2).all(|d| lo[d] - r <= shi[d] && slo[d] <= hi[d] + r)
                 })
                 .map(|(i, _)| i)
