@@ -562,8 +562,8 @@ pub fn solve_into(
             // of each lets the statuses swing in place (a quadratic surface pressed with
             // friction from every point closed: no progress at 1/16 of each correction, the
             // step cut to failure), while the full semi-smooth steps settle them
-            // (tests/cattaneo_mindlin.rs). (Frictionless, the full steps took a longer path:
-            // tests/hertz_pair.rs, mortar with large kinematics.)
+            // (tests/cattaneo_mindlin.rs). (Which formulations search at all: see
+            // `ContactProblem::line_search`; mortar never does.)
             let searching = problem.line_search()
                 && !(backtracking && merits.stalled(line_search::FULL_AFTER_STALL));
             if let (Some(dx), Some(reference), false, true) =
