@@ -187,14 +187,14 @@ impl InterfaceSolver {
     /// Factorises the blocks (in parallel) and the interface matrix of `a` (the pattern
     /// given to `new`).
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
-        // the last LU goes before the new interface matrix comes (k² each)
-        self.lu = DenseLu::default();
+        // The new interface matrix is built in the storage of the last LU (k² each: one of
+        // them at a time, and no fresh pages to fault in at every Newton iteration).
+        let k = self.gamma.len();
+        let mut t = self.lu.take_storage(k);
         self.blocks
             .par_iter_mut()
             .map(|b| b.factor(a))
             .collect::<Result<Vec<()>>>()?;
-        let k = self.gamma.len();
-        let mut t = Mat::<f64>::zeros(k, k);
         for &(p, i, j) in &self.gamma_entries {
             t[(i, j)] += a.values[p];
         }
@@ -207,21 +207,31 @@ impl InterfaceSolver {
         }
         // Unknowns decoupled from the rest of the interface (the multipliers of open
         // contact points: row and column hold only the diagonal) are solved on their own;
-        // the dense LU, k³, gets the others only.
+        // the dense LU, k³, gets the others only. Only the entries of A in Γ × Γ and of
+        // the blocks' Schur complements can be nonzero: they alone are looked at.
         let mut coupled = vec![false; k];
-        for j in 0..k {
-            for i in 0..k {
-                let v = t[(i, j)];
-                if !v.is_finite() {
-                    return Err(Error::solve(
-                        "the system matrix is singular: non-finite interface matrix",
-                    ));
-                }
-                if i != j && v != 0.0 {
-                    coupled[i] = true;
-                    coupled[j] = true;
+        let mut finite = true;
+        let mut look = |i: usize, j: usize, v: f64| {
+            finite &= v.is_finite();
+            if i != j && v != 0.0 {
+                coupled[i] = true;
+                coupled[j] = true;
+            }
+        };
+        for &(_, i, j) in &self.gamma_entries {
+            look(i, j, t[(i, j)]);
+        }
+        for b in &self.blocks {
+            for &gi in &b.gamma {
+                for &gj in &b.gamma {
+                    look(gi, gj, t[(gi, gj)]);
                 }
             }
+        }
+        if !finite {
+            return Err(Error::solve(
+                "the system matrix is singular: non-finite interface matrix",
+            ));
         }
         self.decoupled.clear();
         self.kept.clear();
@@ -349,6 +359,18 @@ impl Default for DenseLu {
 }
 
 impl DenseLu {
+    /// A zero k × k matrix in the storage of the last factors (freed if of another size).
+    fn take_storage(&mut self, k: usize) -> Mat<f64> {
+        let mut t = std::mem::take(self).lu;
+        if t.nrows() == k && t.ncols() == k {
+            t.fill(0.0);
+            t
+        } else {
+            drop(t);
+            Mat::zeros(k, k)
+        }
+    }
+
     /// Factorises the rows and columns `kept` (increasing) of `t`, which it takes: they
     /// are first packed into its leading block, in place (column by column, each entry
     /// read from at or after where it is written, so from nothing overwritten yet).
