@@ -198,10 +198,12 @@ impl InterfaceSolver {
         for &(p, i, j) in &self.gamma_entries {
             t[(i, j)] += a.values[p];
         }
+        // (column by column: both matrices are stored by columns)
         for b in &self.blocks {
-            for (li, &gi) in b.gamma.iter().enumerate() {
-                for (lj, &gj) in b.gamma.iter().enumerate() {
-                    t[(gi, gj)] += b.schur[(li, lj)];
+            for (lj, &gj) in b.gamma.iter().enumerate() {
+                let column = t.col_as_slice_mut(gj);
+                for (&gi, &v) in b.gamma.iter().zip(b.schur.col_as_slice(lj)) {
+                    column[gi] += v;
                 }
             }
         }
@@ -222,9 +224,10 @@ impl InterfaceSolver {
             look(i, j, t[(i, j)]);
         }
         for b in &self.blocks {
-            for &gi in &b.gamma {
-                for &gj in &b.gamma {
-                    look(gi, gj, t[(gi, gj)]);
+            for &gj in &b.gamma {
+                let column = t.col_as_slice(gj);
+                for &gi in &b.gamma {
+                    look(gi, gj, column[gi]);
                 }
             }
         }
@@ -284,13 +287,18 @@ impl InterfaceSolver {
             xg[(kk, 0)] = rhs[g];
         }
         for (blk, z) in self.blocks.iter().zip(&forward) {
+            // L_ΓΓ z_Γ column by column (L is stored by columns); each row's sum still
+            // adds its terms in the order of the columns
             let zg = &z[blk.interior..];
-            for (li, &gi) in blk.gamma.iter().enumerate() {
-                let mut s = zg[li];
-                for (lj, &zj) in zg[..li].iter().enumerate() {
-                    s += blk.lgg[(li, lj)] * zj;
+            let mut s = zg.to_vec();
+            for (lj, &zj) in zg.iter().enumerate() {
+                let column = &blk.lgg.col_as_slice(lj)[lj + 1..];
+                for (si, &l) in s[lj + 1..].iter_mut().zip(column) {
+                    *si += l * zj;
                 }
-                xg[(gi, 0)] += s;
+            }
+            for (&gi, si) in blk.gamma.iter().zip(s) {
+                xg[(gi, 0)] += si;
             }
         }
         let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| xg[(self.kept[i], 0)]);
