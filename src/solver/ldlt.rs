@@ -195,6 +195,12 @@ pub fn constrained_order(a: &SparseMatrix, np: usize) -> Result<Vec<usize>> {
 impl OrderedLdlt {
     /// Analyses the pattern of `a` (structurally symmetric) in the order `fwd`.
     pub fn new(a: &SparseMatrix, fwd: Vec<usize>) -> Result<Self> {
+        Self::with_storage(a, fwd, vec![])
+    }
+
+    /// As `new`, the factor's values in `storage` (that of an earlier analysis, see
+    /// `into_storage`: its pages are mapped already, where fresh ones are faulted in).
+    pub fn with_storage(a: &SparseMatrix, fwd: Vec<usize>, storage: Vec<f64>) -> Result<Self> {
         let n = a.n;
         let mut inv = vec![0usize; n];
         for (i, &p) in fwd.iter().enumerate() {
@@ -253,12 +259,16 @@ impl OrderedLdlt {
         let nnz = row_idx.len();
         // checked once here; each factorisation pairs it with its values
         let permuted = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        // (each factorisation overwrites every value: what the storage holds can stay)
+        let mut values = storage;
+        values.resize(symbolic.len_val(), 0.0);
+        values.truncate(symbolic.len_val());
         Ok(OrderedLdlt {
             fwd,
             permuted,
             permuted_values: vec![0.0; nnz],
             origin,
-            values: vec![0.0; symbolic.len_val()],
+            values,
             symbolic,
             scratch,
             solve_scratch,
@@ -293,6 +303,11 @@ impl OrderedLdlt {
                 ))
             })?;
         Ok(())
+    }
+
+    /// The storage of the factor's values, for a later analysis (`with_storage`).
+    pub fn into_storage(self) -> Vec<f64> {
+        self.values
     }
 
     /// The entry of the analysed pattern each factorised entry comes from.

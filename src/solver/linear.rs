@@ -5,7 +5,7 @@
 //! of the last pattern).
 
 use super::gmres;
-use super::interface::{interface_of, InterfaceSolver};
+use super::interface::{interface_of, InterfaceSolver, Storage};
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
@@ -23,14 +23,29 @@ enum Factorisation {
 
 impl Factorisation {
     /// `transpose` is emptied when the interface path is taken: only its choice reads it.
-    fn new(a: &SparseMatrix, np: usize, transpose: &mut Vec<usize>) -> Result<Self> {
+    /// `storage`: that of the last analysis (`Factorisation::into_storage`).
+    fn new(
+        a: &SparseMatrix,
+        np: usize,
+        transpose: &mut Vec<usize>,
+        storage: Storage,
+    ) -> Result<Self> {
         Ok(match interface_of(a, np, transpose) {
             Some(in_gamma) => {
                 *transpose = vec![];
-                Factorisation::Interface(Box::new(InterfaceSolver::new(a, in_gamma)?))
+                Factorisation::Interface(Box::new(InterfaceSolver::new(a, in_gamma, storage)?))
             }
-            None => Factorisation::Saddle(Box::new(SaddleLdlt::new(a, np)?)),
+            None => {
+                drop(storage);
+                Factorisation::Saddle(Box::new(SaddleLdlt::new(a, np)?))
+            }
         })
+    }
+    fn into_storage(self) -> Storage {
+        match self {
+            Factorisation::Interface(s) => s.into_storage(),
+            Factorisation::Saddle(_) => Storage::default(),
+        }
     }
     fn factor(&mut self, a: &SparseMatrix, transpose: &[usize]) -> Result<()> {
         match self {
@@ -76,6 +91,8 @@ pub struct LinearSolver {
     /// For `SaddleLdlt`: number of leading primal (displacement) unknowns.
     pub n_primal: usize,
     ldlt: Option<Factorisation>,
+    /// The large buffers of the last analysis, while the next one is not made.
+    storage: Storage,
     sym_llt: Option<SymbolicLlt<usize>>,
     sym_lu: Option<SymbolicLu<usize>>,
     llt: Option<Llt<usize, f64>>,
@@ -115,6 +132,7 @@ impl LinearSolver {
             pattern: None,
             n_primal: 0,
             ldlt: None,
+            storage: Storage::default(),
             sym_llt: None,
             sym_lu: None,
             llt: None,
@@ -151,7 +169,12 @@ impl LinearSolver {
         if !unchanged {
             self.sym_llt = None;
             self.sym_lu = None;
-            self.ldlt = None;
+            // (its large buffers go to the next analysis)
+            self.storage = self
+                .ldlt
+                .take()
+                .map(Factorisation::into_storage)
+                .unwrap_or_default();
             self.pattern = Some(if a.pattern_stamp != 0 {
                 Pattern::Stamp(a.pattern_stamp)
             } else {
@@ -195,7 +218,13 @@ impl LinearSolver {
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    self.ldlt = Some(Factorisation::new(a, self.n_primal, &mut self.transpose)?);
+                    let storage = std::mem::take(&mut self.storage);
+                    self.ldlt = Some(Factorisation::new(
+                        a,
+                        self.n_primal,
+                        &mut self.transpose,
+                        storage,
+                    )?);
                     self.symbolic_count += 1;
                 }
                 if self.skip_reuse > 0 {
