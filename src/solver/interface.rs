@@ -32,8 +32,11 @@ use rayon::prelude::*;
 /// grows as √n (SSNP154 D set-up: k ≈ 7√n), so its LU grows as n^1.5, as the bodies'
 /// sparse factorisations do. Measured on that set-up: the LU takes 0.13 s at k ≈ 2200
 /// (92k unknowns; the whole run 14 s, against 55 s through the LDLᵀ and GMRES) and 0.8 s
-/// at k ≈ 3700 (294k). At 6000 the dense matrices hold about 1 GB and the LU about 4 s.
-const MAX_INTERFACE: usize = 6000;
+/// at k ≈ 3700 (294k). SSNP154 A with mortar at 1.27M unknowns (k ≈ 6700, k growing as 1/h
+/// from 2357 at 98k): 423 s and 5.3 GB with this path, where the LDLᵀ passed 11.8 GB in
+/// 65 s. At 10 000 the dense matrices hold about 1.6 GB and the LU takes about 16 s (k³
+/// from 0.8 s at 3700).
+const MAX_INTERFACE: usize = 10_000;
 
 const NONE: usize = usize::MAX;
 
