@@ -603,9 +603,6 @@ impl Block {
         }
         self.factored.clear(); // until this factorisation succeeds
         self.last_forward = None;
-        // the dense matrices of the last factorisation go before the new ones come
-        self.lgg = Mat::zeros(0, 0);
-        self.schur = Mat::zeros(0, 0);
         // σ of the size of the block's largest diagonal entry: the trailing pivots are
         // then σ − (a positive semi-definite term), negative and well scaled.
         let diag = self
@@ -618,11 +615,14 @@ impl Block {
         self.ldlt
             .factor_with(|p, _, _| if p == NONE { shift } else { a.values[p] })?;
         let k = self.unknowns.len() - self.interior;
-        let (l, d) = self.ldlt.trailing_block(k);
+        // (the last factorisation's L_ΓΓ and S' are overwritten in their storage: no
+        // fresh pages to fault in at every factorisation)
+        let d = self.ldlt.trailing_block(k, &mut self.lgg);
+        let l = &self.lgg;
         let ld = Mat::from_fn(k, k, |i, j| if i >= j { l[(i, j)] * d[j] } else { 0.0 });
         // S' = L (D Lᵀ), symmetric: its lower half from the two triangles (a sixth of the
-        // flops of the full product), then mirrored
-        self.schur = Mat::zeros(k, k);
+        // flops of the full product, every entry of it written), then mirrored
+        self.schur.resize_with(k, k, |_, _| 0.0);
         triangular::matmul(
             self.schur.as_mut(),
             BlockStructure::TriangularLower,
@@ -640,7 +640,6 @@ impl Block {
                 self.schur[(j, i)] = self.schur[(i, j)];
             }
         }
-        self.lgg = l;
         let mut pivots = self.ldlt.pivots();
         pivots.truncate(self.interior);
         self.pivots = pivots;

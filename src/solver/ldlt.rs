@@ -417,12 +417,14 @@ impl OrderedLdlt {
         &self.fwd
     }
 
-    /// The last `k` columns of the factor: the unit lower triangle L and the pivots D of
-    /// the trailing k × k block (L D Lᵀ is the Schur complement of the leading unknowns).
-    pub fn trailing_block(&self, k: usize) -> (Mat<f64>, Vec<f64>) {
+    /// The last `k` columns of the factor: the unit lower triangle L of the trailing k × k
+    /// block, written into `l` (whose storage is reused), and the block's pivots D,
+    /// returned (L D Lᵀ is the Schur complement of the leading unknowns).
+    pub fn trailing_block(&self, k: usize, l: &mut Mat<f64>) -> Vec<f64> {
         let n = self.fwd.len();
         let first = n - k;
-        let mut l = Mat::<f64>::zeros(k, k);
+        l.resize_with(k, k, |_, _| 0.0);
+        l.fill(0.0);
         let mut d = vec![0.0; k];
         let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
             unreachable!("the analysis forces the supernodal kernel")
@@ -448,7 +450,7 @@ impl OrderedLdlt {
                 }
             }
         }
-        (l, d)
+        d
     }
 }
 
@@ -577,7 +579,8 @@ mod tests {
             .collect();
         let mut f = OrderedLdlt::new(&a, fwd.clone()).unwrap();
         f.factor_with(|p, _, _| a.values[p]).unwrap();
-        let (l, d) = f.trailing_block(k);
+        let mut l = Mat::zeros(0, 0);
+        let d = f.trailing_block(k, &mut l);
         // dense P A Pᵀ and its Schur complement on the last k unknowns
         let mut dense = Mat::<f64>::zeros(total, total);
         for c in 0..total {
