@@ -259,10 +259,13 @@ impl OrderedLdlt {
         let nnz = row_idx.len();
         // checked once here; each factorisation pairs it with its values
         let permuted = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        // (each factorisation overwrites every value: what the storage holds can stay)
+        // (each factorisation overwrites every value: what the storage holds can stay; a
+        // storage too small grows to the size needed, not to twice its own as `resize` would)
+        let len = symbolic.len_val();
         let mut values = storage;
-        values.resize(symbolic.len_val(), 0.0);
-        values.truncate(symbolic.len_val());
+        values.truncate(len);
+        values.reserve_exact(len - values.len());
+        values.resize(len, 0.0);
         Ok(OrderedLdlt {
             fwd,
             permuted,
