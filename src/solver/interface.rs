@@ -108,8 +108,8 @@ pub fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Option<
 pub struct Storage {
     /// The blocks' factors' values.
     factors: Vec<Vec<f64>>,
-    /// The interface matrix, and the size it has room for.
-    interface: Option<(Mat<f64>, usize)>,
+    /// The interface matrix's storage (its last LU).
+    interface: DenseLu,
 }
 
 impl InterfaceSolver {
@@ -177,9 +177,11 @@ impl InterfaceSolver {
         }
         // the blocks' orderings and analyses, in parallel
         // (an interface matrix too small for this interface goes now, before the analyses)
-        let interface = storage
-            .interface
-            .filter(|&(_, capacity)| capacity >= gamma.len());
+        let lu = if storage.interface.capacity >= gamma.len() {
+            storage.interface
+        } else {
+            DenseLu::default()
+        };
         let mut factors = storage.factors;
         factors.resize_with(parts.len(), Vec::new);
         let blocks = parts
@@ -203,14 +205,7 @@ impl InterfaceSolver {
             gamma,
             blocks,
             gamma_entries,
-            lu: match interface {
-                Some((lu, capacity)) => DenseLu {
-                    lu,
-                    capacity,
-                    ..DenseLu::default()
-                },
-                None => DenseLu::default(),
-            },
+            lu,
             kept: vec![],
             decoupled: vec![],
         })
@@ -224,7 +219,7 @@ impl InterfaceSolver {
                 .into_iter()
                 .map(|b| b.ldlt.into_storage())
                 .collect(),
-            interface: Some((self.lu.lu, self.lu.capacity)),
+            interface: self.lu,
         }
     }
 

@@ -212,13 +212,15 @@ impl LinearSolver {
                 // slightly non-symmetric tangent (contact geometry terms) is solved exactly.
                 let fresh = self.ldlt.is_none();
                 if fresh {
+                    // (taken here: the LU fallback below has no use for it)
+                    let storage = std::mem::take(&mut self.storage);
                     self.transpose = transpose_positions(a);
                     if self.transpose.contains(&usize::MAX) {
                         // not structurally symmetric: no symmetric part to factorise
+                        drop(storage);
                         self.lu_fallback = true;
                         return self.factor_lu(a);
                     }
-                    let storage = std::mem::take(&mut self.storage);
                     self.ldlt = Some(Factorisation::new(
                         a,
                         self.n_primal,
