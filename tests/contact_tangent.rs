@@ -48,9 +48,11 @@ fn check_from(
         "master = \"LowerTop\"",
         &format!("master = \"LowerTop\"\nformulation = \"{formulation}\"\n{extra}"),
     );
+    // ("plane_strain small": small kinematics)
+    let (model, kinematics) = model.split_once(' ').unwrap_or((model, "large"));
     let text = text.replace(
         "kinematics = \"large\"",
-        &format!("kinematics = \"large\"\nmodelisation = \"{model}\""),
+        &format!("kinematics = \"{kinematics}\"\nmodelisation = \"{model}\""),
     );
     let case: CaseFile = toml::from_str(&text).unwrap();
     let solid = build_problem(&case, &mesh).unwrap();
@@ -98,6 +100,12 @@ fn check_from(
         let half: Vec<f64> = x.iter().map(|v| 0.5 * v).collect();
         p.evaluate(&half, 1.0, &mut r, false).unwrap();
         p.commit_step();
+    }
+    // mortar's statuses are those of its last update: taken at this state, so that nodes
+    // pressed in are active and their friction sticks or slips (the slip row's augmented
+    // pressure −μ s g̃_j is then differentiated too)
+    if formulation == "mortar" {
+        p.update_status(&x, 1.0).unwrap();
     }
     p.evaluate(&x, 1.0, &mut r, true).unwrap();
     let a = p.matrix().clone();
@@ -183,8 +191,27 @@ fn tangential_penalty_tangent_matches_finite_differences() {
 /// Mortar with Coulomb friction: stick and slip nodes.
 #[test]
 fn mortar_frictional_tangent_matches_finite_differences() {
-    check_with(CellKind::Quad4, "mortar", "friction = 0.3", 1e-6);
-    check_with(CellKind::Quad8, "mortar", "friction = 0.3", 1e-6);
+    for mu in ["0.3", "0.05", "0.02"] {
+        check_with(CellKind::Quad4, "mortar", &format!("friction = {mu}"), 1e-6);
+        check_with(CellKind::Quad8, "mortar", &format!("friction = {mu}"), 1e-6);
+    }
+}
+
+/// Mortar with Coulomb friction on the reference geometry (small kinematics): the slip
+/// rows' augmented pressure −μ s g̃_j is linear in u there.
+#[test]
+fn small_kinematics_mortar_frictional_tangent_matches_finite_differences() {
+    for mu in ["0.3", "0.02"] {
+        for kind in [CellKind::Quad4, CellKind::Quad8] {
+            check_in(
+                kind,
+                "mortar",
+                &format!("friction = {mu}"),
+                "plane_strain small",
+                1e-6,
+            );
+        }
+    }
 }
 
 /// Axisymmetry: the measure 2πr of the mortar integrals is differentiated too.

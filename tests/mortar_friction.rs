@@ -457,3 +457,70 @@ fn linear_ring_turned_in_a_quadratic_ring_keeps_lame() {
 fn quadratic_ring_turned_in_a_linear_ring_keeps_lame() {
     check_rings((CellKind::Quad8, CellKind::Quad4), (32, 60));
 }
+
+// ------------------------------------------ roller pressed with friction in one step
+
+/// SSNP154 D (the NAFEMS roller: quadratic cells, large kinematics, μ = 0.1, the closed
+/// start) with mortar, the whole load in one step. Far from the solution, nodes pressed
+/// into the master with a multiplier still negative took no friction, then slip, then none
+/// again: 60 Newton iterations and two step cuts before the Coulomb bound was taken on the
+/// augmented pressure (the active-set quantity). The answer is the benchmark's.
+#[test]
+fn roller_pressed_with_friction_in_one_load_step_converges_without_cuts() {
+    let text = r#"
+[mesh]
+generator = "ssnp154"
+quadratic = true
+size = 0.1875
+[model]
+modelisation = "plane_strain"
+kinematics = "large"
+[[material]]
+group = "Block"
+E = 70000.0
+nu = 0.3
+[[material]]
+group = "Cylinder"
+E = 210000.0
+nu = 0.3
+[[displacement]]
+group = "Encast"
+dx = 0.0
+dy = 0.0
+[[displacement]]
+group = "Axe"
+dx = 0.0
+[[force]]
+group = "Force"
+fy = -17500.0
+[[contact]]
+slave = "Top_B"
+master = "Bottom_C"
+formulation = "mortar"
+initial = "closed"
+initial_gap = 0.1
+friction = 0.1
+friction_exclude = ["C"]
+[solver]
+steps = 1
+max_iterations = 50
+[[output.probe]]
+name = "DY_B"
+group = "B"
+field = "dy"
+[output]
+vtu = false
+"#;
+    let case: CaseFile = toml::from_str(text).unwrap();
+    let mesh = tribo::case::build_mesh(&case.mesh, std::path::Path::new("")).unwrap();
+    let out = solve(text, &mesh, "roller, one step");
+    assert_eq!(out.report.steps.len(), 1, "the load step was cut");
+    assert!(
+        out.report.total_iterations <= 30,
+        "{} Newton iterations",
+        out.report.total_iterations
+    );
+    // NAFEMS / SSNP154 reference DY_B = −1.3026 mm; 0.2 % is this mesh's discretisation error
+    let dy = out.probes.iter().find(|p| p.0 == "DY_B").unwrap().1;
+    assert!((dy / -1.3026356 - 1.0).abs() < 2e-3, "DY_B = {dy}");
+}
