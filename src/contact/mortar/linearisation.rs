@@ -76,7 +76,6 @@ pub(super) fn linear_tangent(
     law: &[Branch],
     base: usize,
     nm: usize,
-    mu: Option<f64>,
     k: &mut Triplets,
 ) {
     use std::collections::BTreeMap;
@@ -109,12 +108,6 @@ pub(super) fn linear_tangent(
         // stick row s̃_j = 0: −∂s̃_j/∂u = −T_j
         for (&dof, &v) in &tf[j] {
             k.add(base + nm + j, dof, -v);
-        }
-        // slip row's augmented pressure: −μ s ∂g̃_j/∂u = μ s F_j
-        if let (Branch::Slip(sg), Some(mu)) = (law[j], mu) {
-            for (&dof, &v) in &f[j] {
-                k.add(base + nm + j, dof, mu * sg * v);
-            }
         }
     }
 }
@@ -365,10 +358,6 @@ impl Mortar {
                     Branch::Slip(sg) => {
                         for &(col, w) in &dd[j] {
                             k.add(row, col, -(tj - mu * lam[j] * sg) / c * w);
-                        }
-                        // (the augmented pressure's −μ s g̃_j)
-                        for &(col, w) in &dg[j] {
-                            k.add(row, col, -mu * sg * w);
                         }
                     }
                     Branch::Free => {

@@ -406,10 +406,9 @@ impl ContactPair for Mortar {
             }
         }
         // Coulomb friction per slave node (semi-smooth, decided from the iterate): with the
-        // traction t_j, the trial t_j + c s̃_j / D_j and the augmented pressure
-        // p̂_j = λ_j − c g̃_j / D_j: no contact (or no pressure): t_j = 0; stick (|trial| ≤
-        // μ p̂_j): s̃_j = 0; slip: t_j = μ p̂_j sign(trial). Rows scaled by D_j / c like the
-        // normal ones.
+        // traction t_j and the trial t_j + c s̃_j / D_j, no contact (or no pressure): t_j = 0;
+        // stick (|trial| ≤ μ λ_j): s̃_j = 0; slip: t_j = μ λ_j sign(trial). Rows scaled by
+        // D_j / c like the normal ones.
         let mut sl = vec![0.0; nm];
         let mut law = vec![Branch::Free; nm];
         if let Some(mu) = self.friction {
@@ -430,7 +429,7 @@ impl ContactPair for Mortar {
                     ru[dof] += tj * v;
                     k.add(dof, row, v);
                 }
-                law[j] = self.branch(j, lam, sl[j], (g[j], d[j]), lmax, mu);
+                law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 match law[j] {
                     Branch::Free => {
                         rl[nm + j] += -tj * row_d[j] / self.c;
@@ -438,9 +437,8 @@ impl ContactPair for Mortar {
                     }
                     Branch::Stick => rl[nm + j] += -sl[j],
                     Branch::Slip(sg) => {
-                        // t_j = μ (λ_j − c g̃_j/D_j) sign(trial), scaled by D_j / c
                         let scale = d[j] / self.c;
-                        rl[nm + j] += -(tj - mu * lam[j] * sg) * scale - mu * sg * g[j];
+                        rl[nm + j] += -(tj - mu * lam[j] * sg) * scale;
                         k.add(row, row, -scale);
                         k.add(row, ndof + mult_base + j, mu * sg * scale);
                     }
@@ -452,17 +450,7 @@ impl ContactPair for Mortar {
             return;
         }
         if self.small {
-            linear_tangent(
-                &terms,
-                self.c,
-                &active,
-                &d,
-                &law,
-                ndof + mult_base,
-                nm,
-                self.friction,
-                k,
-            );
+            linear_tangent(&terms, self.c, &active, &d, &law, ndof + mult_base, nm, k);
         } else {
             let rows = ndof + mult_base;
             let dg = self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
@@ -554,7 +542,7 @@ impl ContactPair for Mortar {
             self.switches.resize(nm, 0);
             let lmax = lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()));
             for j in 0..nm {
-                let law = self.branch(j, lam, sl[j], (g[j], d[j]), lmax, mu);
+                let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 if law != self.law[j] {
                     self.switches[j] += 1;
                     if self.switches[j] >= 3 {
