@@ -8,8 +8,9 @@
 //! iterations (SSNP154 D with mortar at 82k unknowns: 43 or 48), so one mesh says little
 //! about a change to the Newton method; the totals over a sweep, and its failures, do.
 //!
-//! Run: `cargo bench --bench newton_sweep [-- A] [D] [FORMULATION] [STEPS...]`
-//! (default: both set-ups, mortar, 1 2 3 steps). About two minutes per set-up.
+//! Run: `cargo bench --bench newton_sweep [-- A] [D] [FORMULATION] [small] [STEPS...]`
+//! (default: both set-ups, mortar, large kinematics, 1 2 3 steps; `small`: small
+//! kinematics). About two minutes per set-up.
 
 use std::time::Instant;
 use tribo::case::{self, ssnp154};
@@ -28,7 +29,14 @@ struct Row {
     converged: bool,
 }
 
-fn run(setup: &str, quadratic: bool, size: f64, formulation: &str, steps: usize) -> Row {
+fn run(
+    setup: &str,
+    quadratic: bool,
+    size: f64,
+    formulation: &str,
+    steps: usize,
+    small: bool,
+) -> Row {
     let spec = ssnp154::builtin_mesh(quadratic, size);
     let mesh = match case::build_mesh(&spec, std::path::Path::new("")) {
         Ok(m) => m,
@@ -43,6 +51,9 @@ fn run(setup: &str, quadratic: bool, size: f64, formulation: &str, steps: usize)
     };
     let mut c = ssnp154::contact_case(setup, spec, Some(formulation));
     c.solver.steps = steps;
+    if small {
+        c.model.kinematics = tribo::fem::solid::Kinematics::Small;
+    }
     let t = Instant::now();
     let outcome = case::run_keeping(&c, &mesh, false);
     let seconds = t.elapsed().as_secs_f64();
@@ -85,11 +96,13 @@ fn main() {
         .iter()
         .find(|a| a.contains('-') || *a == "mortar")
         .map_or("mortar", String::as_str);
+    let small = args.iter().any(|a| a == "small");
     let mut steppings: Vec<usize> = args.iter().filter_map(|a| a.parse().ok()).collect();
     if steppings.is_empty() {
         steppings = vec![1, 2, 3];
     }
-    println!("Newton sweep, {formulation}, load steps {steppings:?}\n");
+    let kinematics = if small { "small" } else { "large" };
+    println!("Newton sweep, {formulation}, {kinematics} kinematics, load steps {steppings:?}\n");
     println!("| set-up | size mm | nodes | steps | Newton it. | cuts | s | DY_B |");
     println!("|---|---:|---:|---:|---:|---:|---:|---|");
     let mut totals = vec![];
@@ -97,7 +110,7 @@ fn main() {
         let (mut its, mut cuts, mut failed) = (0, 0, 0);
         for &size in sizes {
             for &steps in &steppings {
-                let row = run(setup, quadratic, size, formulation, steps);
+                let row = run(setup, quadratic, size, formulation, steps, small);
                 its += row.iterations;
                 cuts += row.cuts;
                 failed += usize::from(!row.converged);
