@@ -52,16 +52,7 @@ fn stiffness_scale(case: &CaseFile, mesh: &Mesh, slave: &Surface) -> (f64, f64) 
         .iter()
         .map(|m| m.young)
         .fold(f64::INFINITY, f64::min);
-    let h_min = slave
-        .cells
-        .iter()
-        .map(|&e| {
-            let n = mesh.cell_nodes(e);
-            let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
-            (a[0] - b[0]).hypot(a[1] - b[1])
-        })
-        .fold(f64::INFINITY, f64::min);
-    (e_min, h_min)
+    (e_min, slave.shortest_cell(mesh))
 }
 
 /// The multiplier indices of `nodes` on a mortar pair: a node of the surface that carries
@@ -157,14 +148,7 @@ fn behind_master(mesh: &Mesh, slave: &Surface, master: &Surface) -> Option<(usiz
         let n = mesh.cell_nodes(c);
         (mesh.coords[n[0]], mesh.coords[n[1]])
     };
-    let h = slave
-        .cells
-        .iter()
-        .map(|&c| {
-            let (a, b) = chord(c);
-            (b[0] - a[0]).hypot(b[1] - a[1])
-        })
-        .fold(f64::INFINITY, f64::min);
+    let h = slave.shortest_cell(mesh);
     let mut worst: Option<(usize, f64)> = None;
     for &n in &slave.nodes {
         if master.nodes.binary_search(&n).is_ok() {

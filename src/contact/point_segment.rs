@@ -712,17 +712,7 @@ impl PointToSegment {
     /// Open gap below which a point counts as initially touching: 1e-3 of the shortest
     /// slave cell (so that the Gauss point nearest a single initial contact point is closed).
     fn touch_tolerance(&self, mesh: &Mesh) -> f64 {
-        let shortest = self
-            .slave
-            .cells
-            .iter()
-            .map(|&c| {
-                let n = mesh.cell_nodes(c);
-                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
-                (a[0] - b[0]).hypot(a[1] - b[1])
-            })
-            .fold(f64::INFINITY, f64::min);
-        1e-3 * shortest
+        1e-3 * self.slave.shortest_cell(mesh)
     }
 
     /// Re-pairs every point at the displacement u.

@@ -169,6 +169,19 @@ impl Surface {
     pub fn is_rigid(&self) -> bool {
         self.parent.is_empty()
     }
+
+    /// The shortest cell's length (the chord between its end nodes, on the initial
+    /// geometry): the surface's finest scale.
+    pub fn shortest_cell(&self, mesh: &Mesh) -> f64 {
+        self.cells
+            .iter()
+            .map(|&c| {
+                let n = mesh.cell_nodes(c);
+                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
+                (a[0] - b[0]).hypot(a[1] - b[1])
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
 }
 
 fn connected(mesh: &Mesh, cells: &[usize]) -> bool {

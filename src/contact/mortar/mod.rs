@@ -270,16 +270,7 @@ impl Mortar {
             .iter()
             .zip(&self.u_start)
             .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
-        let h = self
-            .slave
-            .cells
-            .iter()
-            .map(|&c| {
-                let n = mesh.cell_nodes(c);
-                let (a, b) = (mesh.coords[n[0]], mesh.coords[n[1]]);
-                (a[0] - b[0]).hypot(a[1] - b[1])
-            })
-            .fold(f64::INFINITY, f64::min);
+        let h = self.slave.shortest_cell(mesh);
         if motion > h {
             h * (motion / h).log2().ceil().exp2()
         } else {
