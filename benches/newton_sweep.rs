@@ -25,6 +25,9 @@ const SETUPS: [(&str, bool, &[f64]); 2] = [
 
 struct Row {
     iterations: usize,
+    /// numeric LDLᵀ factorisations
+    factorizations: usize,
+    seconds: f64,
     cuts: usize,
     converged: bool,
 }
@@ -44,6 +47,8 @@ fn run(
             println!("{setup} {size}: mesh failed: {e}");
             return Row {
                 iterations: 0,
+                factorizations: 0,
+                seconds: 0.0,
                 cuts: 0,
                 converged: false,
             };
@@ -66,8 +71,9 @@ fn run(
     };
     let iterations = report.map_or(0, |r| r.total_iterations);
     let cuts = report.map_or(0, |r| r.steps.iter().filter(|s| !s.converged).count());
+    let factorizations = report.map_or(0, |r| r.numeric_factorizations);
     println!(
-        "| {setup} | {size} | {} | {steps} | {iterations} | {cuts} | {seconds:.2} | {} |",
+        "| {setup} | {size} | {} | {steps} | {iterations} | {factorizations} | {cuts} | {seconds:.2} | {} |",
         mesh.num_nodes(),
         match (probe, &why) {
             (Some(dy), _) => format!("{dy:.7}"),
@@ -77,6 +83,8 @@ fn run(
     );
     Row {
         iterations,
+        factorizations,
+        seconds,
         cuts,
         converged: why.is_none(),
     }
@@ -103,23 +111,29 @@ fn main() {
     }
     let kinematics = if small { "small" } else { "large" };
     println!("Newton sweep, {formulation}, {kinematics} kinematics, load steps {steppings:?}\n");
-    println!("| set-up | size mm | nodes | steps | Newton it. | cuts | s | DY_B |");
-    println!("|---|---:|---:|---:|---:|---:|---:|---|");
+    println!("| set-up | size mm | nodes | steps | Newton it. | LDLᵀ | cuts | s | DY_B |");
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---|");
     let mut totals = vec![];
     for &(setup, quadratic, sizes) in &setups {
-        let (mut its, mut cuts, mut failed) = (0, 0, 0);
+        let (mut its, mut facts, mut cuts, mut failed, mut seconds) = (0, 0, 0, 0, 0.0);
         for &size in sizes {
             for &steps in &steppings {
                 let row = run(setup, quadratic, size, formulation, steps, small);
                 its += row.iterations;
+                facts += row.factorizations;
+                seconds += row.seconds;
                 cuts += row.cuts;
                 failed += usize::from(!row.converged);
             }
         }
-        totals.push((setup, its, cuts, failed, sizes.len() * steppings.len()));
+        let runs = sizes.len() * steppings.len();
+        totals.push((setup, its, facts, cuts, failed, runs, seconds));
     }
     println!();
-    for (setup, its, cuts, failed, runs) in totals {
-        println!("{setup}: {its} Newton iterations, {cuts} step cuts, {failed} failed runs ({runs} runs)");
+    for (setup, its, facts, cuts, failed, runs, seconds) in totals {
+        println!(
+            "{setup}: {its} Newton iterations, {facts} LDLᵀ factorisations, {cuts} step cuts, \
+             {failed} failed runs ({runs} runs, {seconds:.1} s)"
+        );
     }
 }

@@ -363,10 +363,11 @@ fn mortar_newton_converges_quadratically_with_large_kinematics() {
         let r: Vec<f64> = it.iter().map(|i| i.relative_residual).collect();
         println!("axisymmetric {axisymmetric}, quadratic {quadratic}: residuals {r:?}");
         // the last correction at settled statuses from a small residual to one above
-        // round-off (1e-14): log r_{k+1} / log r_k ≥ 1.8 (2 is quadratic)
+        // round-off (1e-13: the linear stage's converged residuals, 2–6e-14 in these runs,
+        // show where it lies): log r_{k+1} / log r_k ≥ 1.8 (2 is quadratic)
         let pair = (0..r.len() - 1)
             .rev()
-            .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-14 && it[k].status_changes == 0)
+            .find(|&k| r[k] < 1e-2 && r[k + 1] > 1e-13 && it[k].status_changes == 0)
             .expect("an iteration pair in the asymptotic range");
         let order = r[pair + 1].ln() / r[pair].ln();
         println!("pair {} -> {}: order {order:.2}", r[pair], r[pair + 1]);
@@ -410,14 +411,17 @@ fn linear_cylinders_converge_to_hertz_under_refinement() {
 /// starts: the touching point, the points within 0.1 closed (a zone of half-width 2.2,
 /// smaller than Hertz's 3.1) and within 0.3 (3.9, larger). Each converges without a step
 /// cut to the same state (frictionless elastic contact has one solution): the pole
-/// displacement within 1e-8 of the touching start's; the first two in at most 10 Newton
-/// iterations at both cell sizes (measured 7–8). The too-large zone sheds its outer ring a
-/// node or two per re-solve (measured 10 and 15 iterations at 0.25 and 0.125): at most 16.
+/// displacement within 1e-8 of the touching start's. Iterations, with the linear stage
+/// (src/solver/continuation.rs), at 0.25, 0.125, 0.0625: touching 10, 14, 14 (the first
+/// iterate, held at one point, closes every overlapping node; the zone then sheds its
+/// outer ring a few nodes per iteration); closed 0.1: 6, 10, 10; closed 0.3: 6, 9, 10.
+/// Without the stage: 8, 8, 36; 8, 8, 10; 10, 15, 59, and at 0.0625 the touching and 0.3
+/// starts cut the step twice. At most 16 (touching) and 12 (closed).
 /// (Before the augmentation's curvature left the tangent: 51–182 iterations in 3–10 load
 /// steps, the touching start at 0.0625 failing.)
 #[test]
 fn mortar_with_large_kinematics_converges_in_one_step_from_any_closed_start() {
-    for size in [0.25, 0.125] {
+    for size in [0.25, 0.125, 0.0625] {
         let mut tips = vec![];
         for start in [
             "",
@@ -441,7 +445,7 @@ fn mortar_with_large_kinematics_converges_in_one_step_from_any_closed_start() {
                 "size {size}, start {start:?}: tip {tip:.10}, {its} iterations, {steps} steps"
             );
             assert_eq!(steps, 1, "{size} {start:?}: a step cut");
-            let most = if start.contains("0.3") { 16 } else { 10 };
+            let most = if start.is_empty() { 16 } else { 12 };
             assert!(its <= most, "{size} {start:?}: {its} iterations");
             tips.push(tip);
         }

@@ -110,4 +110,12 @@ pub trait ContactPair {
     /// only at solutions (where a formulation drops terms that vanish there: mortar's
     /// augmentation curvature). For finite-difference checks of the tangent.
     fn set_exact_tangent(&mut self, _exact: bool) {}
+    /// Whether the formulation's terms exist with small kinematics (on the reference
+    /// geometry) as well as large (see `ContactProblem`'s `set_linear_kinematics`).
+    fn supports_small_kinematics(&self) -> bool {
+        false
+    }
+    /// Whether the contact terms take the reference geometry (small kinematics) instead of
+    /// the current one (where `supports_small_kinematics`).
+    fn set_small_kinematics(&mut self, _small: bool) {}
 }

@@ -7,6 +7,7 @@ use super::pair::ContactPair;
 use crate::assembly::coupled::{CoupledMatrix, Triplets};
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::Result;
+use crate::fem::solid::Kinematics;
 use crate::solver::newton::Nonlinear;
 use crate::solver::problem::{Norms, SolidProblem};
 
@@ -30,6 +31,8 @@ pub struct ContactProblem<'m> {
     /// are taken there, as the pairs' statuses and friction history move on with the solve
     /// (a state evaluated again after the solve would get the last step's).
     pub on_commit: Option<CommitHook<'m>>,
+    /// The bodies' models with large kinematics (see `set_linear_kinematics`).
+    large_models: Vec<usize>,
 }
 
 /// See `ContactProblem::on_commit`.
@@ -59,6 +62,10 @@ impl<'m> ContactProblem<'m> {
         let ndof = solid.u.len();
         let overlap = OverlapCheck::new(solid.mesh, &pairs);
         let committed_u = solid.u.clone();
+        let large_models = (solid.asm.cell_model.iter().enumerate())
+            .filter(|(_, m)| m.kinematics == Kinematics::Large)
+            .map(|(i, _)| i)
+            .collect();
         ContactProblem {
             solid,
             pairs,
@@ -71,6 +78,7 @@ impl<'m> ContactProblem<'m> {
             overlap,
             committed_u,
             on_commit: None,
+            large_models,
         }
     }
 
@@ -262,6 +270,32 @@ impl Nonlinear for ContactProblem<'_> {
 
     fn backtracking(&self) -> bool {
         self.pairs.iter().any(|p| p.friction() > 0.0)
+    }
+
+    // The bodies and the pairs switch, when every pair's terms have both kinematics
+    // (mortar's). Then the linear problem is piecewise linear: its active set settles
+    // without the geometry's nonlinearity. Point-to-segment's and node-to-segment's terms
+    // stay on the deformed geometry, and a stage with linear bodies alone only added
+    // iterations (SSNP154 A and D, 7 meshes each × 1–3 load steps: 504 → 658 and
+    // 796 → 957 Newton iterations).
+    fn set_linear_kinematics(&mut self, linear: bool) -> bool {
+        if self.large_models.is_empty() || !self.pairs.iter().all(|p| p.supports_small_kinematics())
+        {
+            return false;
+        }
+        let k = if linear {
+            Kinematics::Small
+        } else {
+            Kinematics::Large
+        };
+        for &i in &self.large_models {
+            self.solid.asm.cell_model[i].kinematics = k;
+        }
+        for p in &mut self.pairs {
+            p.set_small_kinematics(linear);
+        }
+        self.solid.forget_assembly();
+        true
     }
 
     fn commit_step(&mut self) {

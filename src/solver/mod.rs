@@ -2,6 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
+//! | `continuation.rs` | large kinematics' first load step started from its linear-kinematics solution |
 //! | `gmres.rs` | right-preconditioned GMRES (non-symmetric tangents on the LDLᵀ of their symmetric part) |
 //! | `interface.rs` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
 //! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
@@ -11,6 +12,7 @@
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
 //! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
 
+pub mod continuation;
 pub mod gmres;
 pub mod history;
 pub mod interface;

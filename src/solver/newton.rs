@@ -100,6 +100,12 @@ pub trait Nonlinear {
     fn unloaded(&self, _t: f64) -> bool {
         false
     }
+    /// Switches to linear kinematics (small strains, contact on the reference geometry) in
+    /// place of the model's large kinematics, or back; whether the problem has large
+    /// kinematics to switch (see `continuation.rs`).
+    fn set_linear_kinematics(&mut self, _linear: bool) -> bool {
+        false
+    }
     /// Called when a load step has converged (commit history variables).
     fn commit_step(&mut self) {}
     /// Called when a load step failed and is retried from its start.
@@ -127,6 +133,9 @@ pub struct NewtonSettings {
     /// terms: the first of a step, and with friction those far from the tolerance (see
     /// `solve`).
     pub frozen_bodies: bool,
+    /// A model with large kinematics solves its first load step with linear kinematics
+    /// first, and from that solution with its own (see `continuation.rs`).
+    pub kinematic_continuation: bool,
 }
 
 impl Default for NewtonSettings {
@@ -142,6 +151,7 @@ impl Default for NewtonSettings {
             reuse_factor: true,
             chord_steps: true,
             frozen_bodies: true,
+            kinematic_continuation: true,
         }
     }
 }
@@ -165,6 +175,9 @@ pub struct Iteration {
     /// The fraction of the last correction kept by the line search, when it shortened it.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub step_length: Option<f64>,
+    /// Iterated with linear kinematics (the first stage of a step: see `continuation.rs`).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    pub linear_kinematics: bool,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -203,6 +216,14 @@ impl NewtonSettings {
             self.times.clone()
         }
     }
+}
+
+/// Whether the last step began with the linear-kinematics stage.
+fn step_staged(steps: &[StepReport]) -> bool {
+    steps
+        .last()
+        .and_then(|s| s.iterations.first())
+        .is_some_and(|i| i.linear_kinematics)
 }
 
 /// Frozen-body corrections: only from a residual below FROZEN_BELOW (or at a step's start),
@@ -338,11 +359,23 @@ pub fn solve_into(
     method: Method,
     report: &mut NewtonReport,
 ) -> Result<()> {
+    let mut lin = LinearSolver::new(method);
+    lin.n_primal = problem.num_primal();
+    solve_steps(problem, settings, &mut lin, report, false)
+}
+
+/// `solve_into` with a given linear solver. `stage`: the solve is a stage of a load step
+/// (see `continuation.rs`), whose converged state is not committed nor kept.
+pub(super) fn solve_steps(
+    problem: &mut dyn Nonlinear,
+    settings: &NewtonSettings,
+    lin: &mut LinearSolver,
+    report: &mut NewtonReport,
+    stage: bool,
+) -> Result<()> {
     let n = problem.num_unknowns();
     let mut x = problem.unknowns();
     let mut r = vec![0.0; n];
-    let mut lin = LinearSolver::new(method);
-    lin.n_primal = problem.num_primal();
     let ends = settings.step_ends();
     let t_end = *ends.last().unwrap_or(&1.0);
     let mut lambda_done = 0.0;
@@ -365,6 +398,8 @@ pub fn solve_into(
     let mut last_converged = false;
     // Newton iterations of the last converged step
     let mut last_iterations = usize::MAX;
+    // the step is retried without the linear stage (see below)
+    let mut without_stage = false;
     while next < ends.len() {
         let start = if next == 0 { 0.0 } else { ends[next - 1] };
         let dl = (ends[next] - start) / 2f64.powi(level as i32);
@@ -387,12 +422,21 @@ pub fn solve_into(
         // on one scale (the smallest of their force scales: a distorted start inflates its
         // reactions).
         let mut starts: Vec<Vec<f64>> = vec![];
-        if let Some((dl_prev, dx_prev)) = &last_step {
+        // (a model with large kinematics: its first step from the step's solution with
+        // linear kinematics, when that converged)
+        let linear_stage = if next == 0 && lambda_done == 0.0 && !stage && !without_stage {
+            super::continuation::linear_stage(problem, settings, lin, lambda, report)?
+        } else {
+            None
+        };
+        if let Some((x_linear, _)) = &linear_stage {
+            x.clone_from(x_linear);
+        } else if let Some((dl_prev, dx_prev)) = &last_step {
             let f = (lambda - lambda_done) / dl_prev;
             starts.push(x.iter().zip(dx_prev).map(|(xi, d)| xi + f * d).collect());
         }
-        if problem.imposed_change(lambda_done, lambda) {
-            if let Some(t) = tangent_predictor(problem, &mut lin, &x_start, lambda_done, lambda)? {
+        if linear_stage.is_none() && problem.imposed_change(lambda_done, lambda) {
+            if let Some(t) = tangent_predictor(problem, lin, &x_start, lambda_done, lambda)? {
                 starts.push(t);
             }
         }
@@ -473,6 +517,7 @@ pub fn solve_into(
                     chord: false,
                     frozen_bodies: false,
                     step_length: None,
+                    linear_kinematics: false,
                 });
                 step.converged = true;
                 break;
@@ -608,6 +653,7 @@ pub fn solve_into(
                 chord,
                 frozen_bodies: frozen,
                 step_length,
+                linear_kinematics: false,
             });
             crate::progress::iteration(step_k, step_n, lambda, it, rel);
             if settings.verbose {
@@ -841,6 +887,9 @@ pub fn solve_into(
             }
         }
         report.total_iterations += step.iterations.len() - 1;
+        if let Some((_, linear)) = linear_stage {
+            step.iterations.splice(0..0, linear);
+        }
         let converged = step.converged;
         report.steps.push(step);
         if converged {
@@ -852,6 +901,9 @@ pub fn solve_into(
                 lambda - lambda_done,
                 x.iter().zip(&x_start).map(|(a, b)| a - b).collect(),
             ));
+            if stage {
+                break;
+            }
             if settings.keep_states {
                 report.states.push((lambda, x.clone()));
             }
@@ -865,6 +917,21 @@ pub fn solve_into(
             continue;
         }
         let why = failure.unwrap_or_default();
+        // A step that failed from the linear stage's solution is tried once from the
+        // start without it before it is cut (a large-kinematics answer far from the
+        // linear one, e.g. a body that buckles, may be reached better from rest).
+        let staged = step_staged(&report.steps);
+        if staged && !without_stage {
+            if settings.verbose {
+                eprintln!("  step to t={lambda:.4} failed ({why}); again without the linear stage");
+            }
+            without_stage = true;
+            last_converged = false;
+            x = x_start;
+            problem.restore_step();
+            continue;
+        }
+        without_stage = false;
         if cuts >= settings.max_cuts {
             // x_start is the last converged state (when a step converged at all)
             let kept = report.states.last().is_some_and(|s| s.0 == lambda_done);

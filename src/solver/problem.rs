@@ -152,6 +152,12 @@ impl<'m> SolidProblem<'m> {
         self.asm.dofs.expand(x, &self.imposed, u);
     }
 
+    /// Forgets the last assembly (the bodies' model changed: the same unknowns assemble
+    /// differently).
+    pub fn forget_assembly(&mut self) {
+        self.assembled_at = None;
+    }
+
     pub fn num_free(&self) -> usize {
         self.asm.dofs.num_free
     }

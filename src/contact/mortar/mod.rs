@@ -127,6 +127,9 @@ pub struct Mortar {
     /// solution does not depend on c).
     trial_scale: Vec<f64>,
     switches: Vec<u32>,
+    /// `trial_scale` and `switches` when the kinematics last switched (see
+    /// `set_small_kinematics`).
+    before_switch: (Vec<f64>, Vec<u32>),
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
     last_d: std::sync::Mutex<Vec<f64>>,
     /// Multiplier indices of each slave cell's nodes (corners, then mid-side).
@@ -238,6 +241,7 @@ impl Mortar {
             saved_law: vec![],
             trial_scale: vec![],
             switches: vec![],
+            before_switch: Default::default(),
             last_d: Default::default(),
             cell_mults,
             mult_coords: vec![],
@@ -725,5 +729,23 @@ impl ContactPair for Mortar {
     }
     fn reference_normals(&self) -> bool {
         self.small
+    }
+    fn supports_small_kinematics(&self) -> bool {
+        true
+    }
+    fn set_small_kinematics(&mut self, small: bool) {
+        if small != self.small {
+            self.small = small;
+            // (the friction trial's factors and switch counts of a linear stage are not
+            // the large-kinematics problem's: it starts from those before the stage)
+            let before = std::mem::take(&mut self.before_switch);
+            self.before_switch = (self.trial_scale.clone(), self.switches.clone());
+            if !small {
+                (self.trial_scale, self.switches) = before;
+            }
+            // (both hold terms of the other kinematics)
+            *self.terms_cache.lock().unwrap() = None;
+            *self.linearisation.lock().unwrap() = None;
+        }
     }
 }
