@@ -10,6 +10,7 @@
 //! | `line_search.rs` | backtracking on the residual with each trial point's contact statuses |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
+//! | `nonlinear.rs` | `Nonlinear`: what Newton needs from a problem; the iteration report |
 //! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
 
 pub mod continuation;
@@ -20,4 +21,5 @@ pub mod ldlt;
 pub mod line_search;
 pub mod linear;
 pub mod newton;
+pub mod nonlinear;
 pub mod problem;
