@@ -66,14 +66,6 @@ impl NewtonSettings {
     }
 }
 
-/// Whether the last step began with the linear-kinematics stage.
-fn step_staged(steps: &[StepReport]) -> bool {
-    steps
-        .last()
-        .and_then(|s| s.iterations.first())
-        .is_some_and(|i| i.linear_kinematics)
-}
-
 /// Frozen-body corrections: only from a residual below FROZEN_BELOW (or at a step's start),
 /// not once the residual is within FROZEN_FINISH times the tolerance (the last corrections
 /// are full Newton ones, so friction's constraint rows converge as far below the tolerance
@@ -277,13 +269,16 @@ pub(super) fn solve_steps(
         } else {
             None
         };
-        if let Some((x_linear, _)) = &linear_stage {
-            x.clone_from(x_linear);
+        let staged = linear_stage.is_some();
+        let mut stage_iterations = vec![];
+        if let Some((x_linear, iterations)) = linear_stage {
+            x = x_linear;
+            stage_iterations = iterations;
         } else if let Some((dl_prev, dx_prev)) = &last_step {
             let f = (lambda - lambda_done) / dl_prev;
             starts.push(x.iter().zip(dx_prev).map(|(xi, d)| xi + f * d).collect());
         }
-        if linear_stage.is_none() && problem.imposed_change(lambda_done, lambda) {
+        if !staged && problem.imposed_change(lambda_done, lambda) {
             if let Some(t) = tangent_predictor(problem, lin, &x_start, lambda_done, lambda)? {
                 starts.push(t);
             }
@@ -735,9 +730,7 @@ pub(super) fn solve_steps(
             }
         }
         report.total_iterations += step.iterations.len() - 1;
-        if let Some((_, linear)) = linear_stage {
-            step.iterations.splice(0..0, linear);
-        }
+        step.iterations.splice(0..0, stage_iterations);
         let converged = step.converged;
         report.steps.push(step);
         if converged {
@@ -768,8 +761,7 @@ pub(super) fn solve_steps(
         // A step that failed from the linear stage's solution is tried once from the
         // start without it before it is cut (a large-kinematics answer far from the
         // linear one, e.g. a body that buckles, may be reached better from rest).
-        let staged = step_staged(&report.steps);
-        if staged && !without_stage {
+        if staged {
             if settings.verbose {
                 eprintln!("  step to t={lambda:.4} failed ({why}); again without the linear stage");
             }

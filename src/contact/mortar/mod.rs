@@ -127,8 +127,8 @@ pub struct Mortar {
     /// solution does not depend on c).
     trial_scale: Vec<f64>,
     switches: Vec<u32>,
-    /// `trial_scale` and `switches` when the kinematics last switched (see
-    /// `set_small_kinematics`).
+    /// `trial_scale` and `switches` when small kinematics was switched on (restored when it
+    /// is switched off: see `set_small_kinematics`).
     before_switch: (Vec<f64>, Vec<u32>),
     /// D_j of the last `contribute`, to express its constraint rows as pressures.
     last_d: std::sync::Mutex<Vec<f64>>,
@@ -738,10 +738,10 @@ impl ContactPair for Mortar {
             self.small = small;
             // (the friction trial's factors and switch counts of a linear stage are not
             // the large-kinematics problem's: it starts from those before the stage)
-            let before = std::mem::take(&mut self.before_switch);
-            self.before_switch = (self.trial_scale.clone(), self.switches.clone());
-            if !small {
-                (self.trial_scale, self.switches) = before;
+            if small {
+                self.before_switch = (self.trial_scale.clone(), self.switches.clone());
+            } else {
+                (self.trial_scale, self.switches) = std::mem::take(&mut self.before_switch);
             }
             // (both hold terms of the other kinematics)
             *self.terms_cache.lock().unwrap() = None;
