@@ -174,6 +174,10 @@ fn contact(
     if let Some(r) = report {
         fields.push(("iterations", r.total_iterations.to_string()));
         fields.push(("factorisations", r.numeric_factorizations.to_string()));
+        // where the Newton loop's time went (the rest: set-up, contact search, updates)
+        fields.push(("evaluate_s", format!("{:.3}", r.time_evaluate_s)));
+        fields.push(("factor_s", format!("{:.3}", r.time_factor_s)));
+        fields.push(("solve_s", format!("{:.3}", r.time_solve_s)));
     }
     if let Some(reason) = failure {
         fields.push(("reason", reason));

@@ -1,0 +1,187 @@
+//! One body's block of the interface solve: its matrix (interior, then the interface
+//! unknowns it couples to, with a shifted diagonal there), its LDLᵀ, and the Schur
+//! complement onto its interface read off the factor's trailing block (see `mod.rs`).
+
+use super::NONE;
+use crate::assembly::matrix::SparseMatrix;
+use crate::error::Result;
+use crate::solver::ldlt::{leading_order, OrderedLdlt};
+use faer::linalg::matmul::triangular::{self, BlockStructure};
+use faer::Accum;
+use faer::{Mat, Par};
+
+/// One block of displacements with the interface unknowns it couples to.
+pub(super) struct Block {
+    /// Global unknowns of the block's matrix: its interior, then its interface unknowns.
+    pub(super) unknowns: Vec<usize>,
+    /// Number of interior unknowns (the interface ones follow).
+    pub(super) interior: usize,
+    /// Position in the interface of each of the block's interface unknowns.
+    pub(super) gamma: Vec<usize>,
+    /// The values of A the last factorisation was of (per factorised entry, see
+    /// `Block::factor`).
+    pub(super) factored: Vec<f64>,
+    /// Positions in A of the interior unknowns' diagonal entries (they set the shift).
+    pub(super) diagonal: Vec<usize>,
+    pub(super) ldlt: OrderedLdlt,
+    pub(super) shift: f64,
+    /// Of the last factorisation: the pivots of the interior (in the factorised order),
+    /// the trailing unit lower triangle L_ΓΓ, and S'_b − σI = L_ΓΓ D_Γ L_ΓΓᵀ − σI (kept:
+    /// an active-set re-solve changes T's contact terms only, and assembles T again).
+    pub(super) pivots: Vec<f64>,
+    pub(super) lgg: Mat<f64>,
+    pub(super) schur: Mat<f64>,
+    /// The last forward pass with this factorisation: its interior right-hand side and
+    /// result (an active-set re-solve repeats it: the contact terms live in Γ).
+    pub(super) last_forward: Option<(Vec<f64>, Vec<f64>)>,
+}
+
+impl Block {
+    pub(super) fn new(
+        a: &SparseMatrix,
+        unknowns: Vec<usize>,
+        interior: usize,
+        gamma: Vec<usize>,
+        storage: Vec<f64>,
+    ) -> Result<Block> {
+        let m = unknowns.len();
+        let mut local_of = vec![NONE; a.n];
+        for (l, &g) in unknowns.iter().enumerate() {
+            local_of[g] = l;
+        }
+        // Entries of A in the block (not between two interface unknowns), plus the
+        // interface diagonal. The local numbering keeps the global order within the
+        // interior and within the interface, so each column comes out sorted as its
+        // interior rows, then its interface rows (of an interior column) or its diagonal
+        // (of an interface column).
+        // (at most the entries of the block's columns: no more reserved than that)
+        let bound: usize = unknowns
+            .iter()
+            .map(|&c| a.col_ptr[c + 1] - a.col_ptr[c] + 1)
+            .sum();
+        let mut source = Vec::with_capacity(bound);
+        let mut row_idx = Vec::with_capacity(bound);
+        let mut col_ptr = Vec::with_capacity(m + 1);
+        col_ptr.push(0);
+        for (lc, &c) in unknowns.iter().enumerate() {
+            let rows = a.col_ptr[c]..a.col_ptr[c + 1];
+            for p in rows.clone() {
+                let lr = local_of[a.row_idx[p]];
+                if lr < interior {
+                    row_idx.push(lr);
+                    source.push(p);
+                }
+            }
+            if lc >= interior {
+                row_idx.push(lc);
+                source.push(NONE);
+            } else {
+                for p in rows {
+                    let lr = local_of[a.row_idx[p]];
+                    if lr != NONE && lr >= interior {
+                        row_idx.push(lr);
+                        source.push(p);
+                    }
+                }
+            }
+            col_ptr.push(row_idx.len());
+        }
+        let diagonal = (0..interior)
+            .filter_map(|l| {
+                let q = (col_ptr[l]..col_ptr[l + 1]).find(|&q| row_idx[q] == l)?;
+                Some(source[q])
+            })
+            .collect();
+        // (pattern only: each factorisation reads the values of A, the factor's entries
+        // labelled by their positions there)
+        let local = SparseMatrix {
+            n: m,
+            values: vec![],
+            col_ptr,
+            row_idx,
+            pattern_stamp: 0,
+        };
+        let mut fwd = leading_order(&local, interior)?;
+        fwd.extend(interior..m);
+        let mut ldlt = OrderedLdlt::with_storage(&local, fwd, storage)?;
+        ldlt.relabel_origins(|p| source[p]);
+        let k = m - interior;
+        Ok(Block {
+            unknowns,
+            interior,
+            gamma,
+            factored: vec![],
+            diagonal,
+            ldlt,
+            shift: -1.0,
+            pivots: vec![],
+            lgg: Mat::zeros(k, k),
+            schur: Mat::zeros(k, k),
+            last_forward: None,
+        })
+    }
+
+    pub(super) fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+        // Unchanged values (a Newton iteration that updated the contact terms only, which
+        // live in Γ × Γ): the factorisation stands. Each factorised entry is labelled by its
+        // position in A (NONE: the shifted diagonal of an interface unknown).
+        let origins = self.ldlt.origins();
+        let unchanged = self.factored.len() == origins.len()
+            && origins
+                .iter()
+                .zip(&self.factored)
+                .all(|(&p, &v)| p == NONE || a.values[p] == v);
+        if unchanged {
+            return Ok(());
+        }
+        self.factored.clear(); // until this factorisation succeeds
+        self.last_forward = None;
+        // σ of the size of the block's largest diagonal entry: the trailing pivots are
+        // then σ − (a positive semi-definite term), negative and well scaled.
+        let diag = self
+            .diagonal
+            .iter()
+            .map(|&p| a.values[p].abs())
+            .fold(0.0f64, f64::max);
+        self.shift = -diag.max(f64::MIN_POSITIVE);
+        let shift = self.shift;
+        self.ldlt
+            .factor_with(|p, _, _| if p == NONE { shift } else { a.values[p] })?;
+        let k = self.unknowns.len() - self.interior;
+        // (the last factorisation's L_ΓΓ and S' are overwritten in their storage: no
+        // fresh pages to fault in at every factorisation)
+        let d = self.ldlt.trailing_block(k, &mut self.lgg);
+        let l = &self.lgg;
+        let ld = Mat::from_fn(k, k, |i, j| if i >= j { l[(i, j)] * d[j] } else { 0.0 });
+        // S' = L (D Lᵀ), symmetric: its lower half from the two triangles (a sixth of the
+        // flops of the full product, every entry of it written), then mirrored
+        self.schur.resize_with(k, k, |_, _| 0.0);
+        triangular::matmul(
+            self.schur.as_mut(),
+            BlockStructure::TriangularLower,
+            Accum::Replace,
+            l.as_ref(),
+            BlockStructure::UnitTriangularLower,
+            ld.transpose(),
+            BlockStructure::TriangularUpper,
+            1.0,
+            Par::Seq,
+        );
+        for j in 0..k {
+            self.schur[(j, j)] -= self.shift;
+            for i in j + 1..k {
+                self.schur[(j, i)] = self.schur[(i, j)];
+            }
+        }
+        let mut pivots = self.ldlt.pivots();
+        pivots.truncate(self.interior);
+        self.pivots = pivots;
+        let origins = self.ldlt.origins();
+        self.factored.extend(
+            origins
+                .iter()
+                .map(|&p| if p == NONE { 0.0 } else { a.values[p] }),
+        );
+        Ok(())
+    }
+}
