@@ -5,7 +5,7 @@
 //! of the last pattern).
 
 use super::gmres;
-use super::interface::{interface_of, InterfaceSolver, Storage};
+use super::interface::{interface_of, interface_searched, InterfaceSolver, Storage};
 use super::ldlt::SaddleLdlt;
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
@@ -169,12 +169,14 @@ impl LinearSolver {
         if !unchanged {
             self.sym_llt = None;
             self.sym_lu = None;
-            // (its large buffers go to the next analysis)
-            self.storage = self
-                .ldlt
-                .take()
-                .map(Factorisation::into_storage)
-                .unwrap_or_default();
+            if !self.rebind(a) {
+                // (its large buffers go to the next analysis)
+                self.storage = self
+                    .ldlt
+                    .take()
+                    .map(Factorisation::into_storage)
+                    .unwrap_or_default();
+            }
             self.pattern = Some(if a.pattern_stamp != 0 {
                 Pattern::Stamp(a.pattern_stamp)
             } else {
@@ -253,6 +255,18 @@ impl LinearSolver {
             Method::Lu => self.factor_lu(a)?,
         }
         Ok(())
+    }
+
+    /// A changed pattern that the interface condensation in hand takes as its own (see
+    /// `InterfaceSolver::rebind`): no new analysis.
+    fn rebind(&mut self, a: &SparseMatrix) -> bool {
+        let Some(Factorisation::Interface(s)) = self.ldlt.as_mut() else {
+            return false;
+        };
+        if self.method != Method::SaddleLdlt || self.lu_fallback {
+            return false;
+        }
+        interface_searched(a, self.n_primal).is_some_and(|in_gamma| s.rebind(a, &in_gamma))
     }
 
     fn factor_lu(&mut self, a: &SparseMatrix) -> Result<()> {

@@ -121,6 +121,52 @@ impl Block {
         })
     }
 
+    /// Takes `a`, a matrix of another pattern, as this block's: true when the block's
+    /// entries in it are those analysed (the pattern changed elsewhere, between interface
+    /// unknowns: a contact pattern change), the factor's entries then labelled by their
+    /// positions in `a`. The last factorisation and its values are kept: when the block's
+    /// values in `a` are the same, the next `factor` keeps them. False leaves the block
+    /// unusable (its caller analyses `a` anew). (No copy of the block's pattern is made:
+    /// fresh pages cost more than the comparison at 350k unknowns.)
+    pub(super) fn rebind(&mut self, a: &SparseMatrix) -> bool {
+        let interior = self.interior;
+        // position in the factorised order of each global unknown of the block
+        let mut at = vec![NONE; a.n];
+        for (j, &l) in self.ldlt.order().iter().enumerate() {
+            at[self.unknowns[l]] = j;
+        }
+        let order = self.ldlt.order().to_vec();
+        let mut diagonal = vec![NONE; interior];
+        // The block's matrix (see `local_pattern`): in an interior column, its interior rows
+        // and its interface rows; in an interface column, its interior rows and its
+        // diagonal (NONE). The interface unknowns are ordered last, so the lower triangle of
+        // an interface column holds its diagonal alone.
+        let rebound = self.ldlt.rebind_with(|j, out| {
+            let l = order[j];
+            if l >= interior {
+                out.push((j, NONE));
+                return;
+            }
+            let c = self.unknowns[l];
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let r = at[a.row_idx[p]];
+                if r != NONE && r >= j {
+                    out.push((r, p));
+                    if r == j {
+                        diagonal[l] = p;
+                    }
+                }
+            }
+        });
+        if !rebound {
+            return false;
+        }
+        // (the same pattern: the same interior unknowns have a diagonal entry)
+        diagonal.retain(|&p| p != NONE);
+        self.diagonal = diagonal;
+        true
+    }
+
     pub(super) fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         // Unchanged values (a Newton iteration that updated the contact terms only, which
         // live in Γ × Γ): the factorisation stands. Each factorised entry is labelled by its

@@ -58,12 +58,31 @@ pub struct InterfaceSolver {
 /// one, or whose entries are not symmetric. None when it is empty, too large for a dense
 /// solve, or more than a quarter of the unknowns (then it does not split the bodies).
 pub fn interface_of(a: &SparseMatrix, np: usize, transpose: &[usize]) -> Option<Vec<bool>> {
+    interface_with(a, np, |p, _, _| transpose[p])
+}
+
+/// As `interface_of`, each entry's transpose found by a search in its column (no buffer
+/// of A's size: a rebind's cost is in fresh pages, not in comparisons).
+pub fn interface_searched(a: &SparseMatrix, np: usize) -> Option<Vec<bool>> {
+    interface_with(a, np, |_, r, c| a.position(c, r).unwrap_or(usize::MAX))
+}
+
+/// `transpose(p, r, c)`: the position of (c, r), entry p being (r, c); usize::MAX if none
+/// (then the entry is not symmetric).
+fn interface_with(
+    a: &SparseMatrix,
+    np: usize,
+    transpose: impl Fn(usize, usize, usize) -> usize,
+) -> Option<Vec<bool>> {
     let mut gamma = vec![false; a.n];
     for c in 0..a.n {
         for p in a.col_ptr[c]..a.col_ptr[c + 1] {
             let r = a.row_idx[p];
-            let asymmetric = a.values[transpose[p]] != a.values[p];
-            if r >= np || c >= np || asymmetric {
+            let multiplier = r >= np || c >= np;
+            if multiplier || {
+                let t = transpose(p, r, c);
+                t == usize::MAX || a.values[t] != a.values[p]
+            } {
                 gamma[r] = true;
                 gamma[c] = true;
             }
@@ -85,69 +104,102 @@ pub struct Storage {
     interface: DenseLu,
 }
 
+/// The interface unknowns (increasing) and the blocks: the interior's connected
+/// components packed into two blocks of about equal size (two cores), each as its interior
+/// unknowns then the interface unknowns it couples to, its interior count, and the
+/// positions in the interface of the latter.
+struct Partition {
+    gamma: Vec<usize>,
+    parts: Vec<(Vec<usize>, usize, Vec<usize>)>,
+}
+
+fn partition(a: &SparseMatrix, in_gamma: &[bool]) -> Partition {
+    let n = a.n;
+    let gamma: Vec<usize> = (0..n).filter(|&i| in_gamma[i]).collect();
+    let mut gamma_pos = vec![NONE; n];
+    for (k, &g) in gamma.iter().enumerate() {
+        gamma_pos[g] = k;
+    }
+    // Connected components of the interior, then packed into two blocks of about
+    // equal size (two cores).
+    let mut component = vec![NONE; n];
+    let mut sizes = vec![];
+    for s in 0..n {
+        if in_gamma[s] || component[s] != NONE {
+            continue;
+        }
+        let id = sizes.len();
+        component[s] = id;
+        let mut stack = vec![s];
+        let mut size = 0;
+        while let Some(v) = stack.pop() {
+            size += 1;
+            for &r in &a.row_idx[a.col_ptr[v]..a.col_ptr[v + 1]] {
+                if !in_gamma[r] && component[r] == NONE {
+                    component[r] = id;
+                    stack.push(r);
+                }
+            }
+        }
+        sizes.push(size);
+    }
+    let mut by_size: Vec<usize> = (0..sizes.len()).collect();
+    by_size.sort_by_key(|&c| std::cmp::Reverse(sizes[c]));
+    let mut bin_of = vec![0usize; sizes.len()];
+    let mut load = [0usize; 2];
+    for c in by_size {
+        let bin = if load[0] <= load[1] { 0 } else { 1 };
+        bin_of[c] = bin;
+        load[bin] += sizes[c];
+    }
+    let mut parts = vec![];
+    for bin in 0..2 {
+        if load[bin] == 0 {
+            continue;
+        }
+        let mut unknowns: Vec<usize> = (0..n)
+            .filter(|&i| component[i] != NONE && bin_of[component[i]] == bin)
+            .collect();
+        let interior = unknowns.len();
+        let mut touched = vec![false; gamma.len()];
+        for &i in &unknowns {
+            for &r in &a.row_idx[a.col_ptr[i]..a.col_ptr[i + 1]] {
+                if in_gamma[r] {
+                    touched[gamma_pos[r]] = true;
+                }
+            }
+        }
+        let block_gamma: Vec<usize> = (0..gamma.len()).filter(|&k| touched[k]).collect();
+        unknowns.extend(block_gamma.iter().map(|&k| gamma[k]));
+        parts.push((unknowns, interior, block_gamma));
+    }
+    Partition { gamma, parts }
+}
+
+/// The entries of A inside Γ × Γ: (position in A, interface row, interface column).
+fn gamma_entries(a: &SparseMatrix, gamma: &[usize]) -> Vec<(usize, usize, usize)> {
+    let mut gamma_pos = vec![NONE; a.n];
+    for (k, &g) in gamma.iter().enumerate() {
+        gamma_pos[g] = k;
+    }
+    let mut entries = vec![];
+    for (jc, &c) in gamma.iter().enumerate() {
+        for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+            let r = a.row_idx[p];
+            if gamma_pos[r] != NONE {
+                entries.push((p, gamma_pos[r], jc));
+            }
+        }
+    }
+    entries
+}
+
 impl InterfaceSolver {
     /// Analyses `a` (structurally symmetric) with its interface `in_gamma` (`interface_of`),
     /// in the `storage` of an earlier analysis (or a default one).
     pub fn new(a: &SparseMatrix, in_gamma: Vec<bool>, storage: Storage) -> Result<Self> {
         let n = a.n;
-        let gamma: Vec<usize> = (0..n).filter(|&i| in_gamma[i]).collect();
-        let mut gamma_pos = vec![NONE; n];
-        for (k, &g) in gamma.iter().enumerate() {
-            gamma_pos[g] = k;
-        }
-        // Connected components of the interior, then packed into two blocks of about
-        // equal size (two cores).
-        let mut component = vec![NONE; n];
-        let mut sizes = vec![];
-        for s in 0..n {
-            if in_gamma[s] || component[s] != NONE {
-                continue;
-            }
-            let id = sizes.len();
-            component[s] = id;
-            let mut stack = vec![s];
-            let mut size = 0;
-            while let Some(v) = stack.pop() {
-                size += 1;
-                for &r in &a.row_idx[a.col_ptr[v]..a.col_ptr[v + 1]] {
-                    if !in_gamma[r] && component[r] == NONE {
-                        component[r] = id;
-                        stack.push(r);
-                    }
-                }
-            }
-            sizes.push(size);
-        }
-        let mut by_size: Vec<usize> = (0..sizes.len()).collect();
-        by_size.sort_by_key(|&c| std::cmp::Reverse(sizes[c]));
-        let mut bin_of = vec![0usize; sizes.len()];
-        let mut load = [0usize; 2];
-        for c in by_size {
-            let bin = if load[0] <= load[1] { 0 } else { 1 };
-            bin_of[c] = bin;
-            load[bin] += sizes[c];
-        }
-        let mut parts = vec![];
-        for bin in 0..2 {
-            if load[bin] == 0 {
-                continue;
-            }
-            let mut unknowns: Vec<usize> = (0..n)
-                .filter(|&i| component[i] != NONE && bin_of[component[i]] == bin)
-                .collect();
-            let interior = unknowns.len();
-            let mut touched = vec![false; gamma.len()];
-            for &i in &unknowns {
-                for &r in &a.row_idx[a.col_ptr[i]..a.col_ptr[i + 1]] {
-                    if in_gamma[r] {
-                        touched[gamma_pos[r]] = true;
-                    }
-                }
-            }
-            let block_gamma: Vec<usize> = (0..gamma.len()).filter(|&k| touched[k]).collect();
-            unknowns.extend(block_gamma.iter().map(|&k| gamma[k]));
-            parts.push((unknowns, interior, block_gamma));
-        }
+        let Partition { gamma, parts } = partition(a, &in_gamma);
         // the blocks' orderings and analyses, in parallel
         // (an interface matrix too small for this interface goes now, before the analyses)
         let lu = if storage.interface.capacity >= gamma.len() {
@@ -164,15 +216,7 @@ impl InterfaceSolver {
                 Block::new(a, unknowns, interior, block_gamma, values)
             })
             .collect::<Result<Vec<Block>>>()?;
-        let mut gamma_entries = vec![];
-        for (jc, &c) in gamma.iter().enumerate() {
-            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
-                let r = a.row_idx[p];
-                if in_gamma[r] {
-                    gamma_entries.push((p, gamma_pos[r], jc));
-                }
-            }
-        }
+        let gamma_entries = gamma_entries(a, &gamma);
         Ok(InterfaceSolver {
             n,
             gamma,
@@ -182,6 +226,38 @@ impl InterfaceSolver {
             kept: vec![],
             decoupled: vec![],
         })
+    }
+
+    /// Takes `a`, a matrix of another pattern (`in_gamma` its interface), as this
+    /// analysis's when only its entries between interface unknowns differ: the same
+    /// interface, the same blocks with the same entries. A contact pattern change is
+    /// usually that (mortar segments that start or stop overlapping among the interface
+    /// unknowns); the blocks' analyses, and their factorisations while their values are
+    /// unchanged, then stand. False when `a` needs an analysis of its own (this one is
+    /// then unusable: `into_storage` only).
+    pub fn rebind(&mut self, a: &SparseMatrix, in_gamma: &[bool]) -> bool {
+        if a.n != self.n {
+            return false;
+        }
+        let Partition { gamma, parts } = partition(a, in_gamma);
+        let same_blocks = gamma == self.gamma
+            && parts.len() == self.blocks.len()
+            && parts.iter().zip(&self.blocks).all(|((u, interior, g), b)| {
+                *u == b.unknowns && *interior == b.interior && *g == b.gamma
+            });
+        if !same_blocks {
+            return false;
+        }
+        let rebound = self
+            .blocks
+            .par_iter_mut()
+            .map(|b| b.rebind(a))
+            .collect::<Vec<bool>>();
+        if rebound.contains(&false) {
+            return false;
+        }
+        self.gamma_entries = gamma_entries(a, &self.gamma);
+        true
     }
 
     /// Its large buffers, for the next analysis.
@@ -365,6 +441,10 @@ mod tests {
     /// with a non-symmetric friction-like term between the tied unknowns; a third
     /// multiplier is decoupled (an open point).
     fn two_bodies(len: usize) -> SparseMatrix {
+        SparseMatrix::from_entries(2 * len + 3, &two_bodies_entries(len))
+    }
+
+    fn two_bodies_entries(len: usize) -> Vec<(usize, usize, f64)> {
         let mut e: Vec<(usize, usize, f64)> = vec![];
         for body in 0..2 {
             let o = body * len;
@@ -390,7 +470,7 @@ mod tests {
             e.push((b, a, -0.2));
         }
         e.push((m + 2, m + 2, 2.0)); // an open contact point: decoupled multiplier
-        SparseMatrix::from_entries(m + 3, &e)
+        e
     }
 
     #[test]
@@ -483,5 +563,74 @@ mod tests {
         let a = two_bodies(len);
         let t = transpose_positions(&a);
         assert!(interface_of(&a, 2 * len, &t).is_none());
+    }
+
+    #[test]
+    fn a_pattern_changed_between_interface_unknowns_keeps_the_analysis() {
+        let len = 30;
+        let m = 2 * len;
+        let a = two_bodies(len);
+        let t = transpose_positions(&a);
+        let in_gamma = interface_of(&a, m, &t).expect("small interface");
+        let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
+        assert!(solve_error(&mut s, &a) < 1e-12);
+        let with = |extra: &[(usize, usize, f64)], body_scale: f64| {
+            let mut e = two_bodies_entries(len);
+            for entry in e.iter_mut().filter(|(r, c, _)| *r < m && *c < m) {
+                entry.2 *= body_scale;
+            }
+            e.extend_from_slice(extra);
+            SparseMatrix::from_entries(m + 3, &e)
+        };
+        // the open point closes on the first chain's last unknown (both in the interface):
+        // a new pattern, the same blocks, their values unchanged
+        let closing = [(m + 2, len - 1, 1.0), (len - 1, m + 2, 1.0)];
+        let a2 = with(&closing, 1.0);
+        assert_ne!(a2.row_idx, a.row_idx, "the pattern changed");
+        assert!(s.rebind(&a2, &interface_searched(&a2, m).unwrap()));
+        s.factor(&a2).unwrap();
+        assert!(
+            s.blocks.iter().all(|b| b.last_forward.is_some()),
+            "the blocks' factorisations are kept"
+        );
+        let mut x = vec![0.0; a2.n];
+        let b: Vec<f64> = (0..a2.n).map(|i| (0.3 * i as f64).sin()).collect();
+        x.copy_from_slice(&b);
+        s.solve(&mut x);
+        let mut r = vec![0.0; a2.n];
+        a2.mul_vec(&x, &mut r);
+        let res = r
+            .iter()
+            .zip(&b)
+            .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+        assert!(res < 1e-12, "max residual {res}");
+        // the same pattern change with the bodies' values changed: refactorised, exact
+        let a3 = with(&closing, 1.5);
+        let mut s3 =
+            InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default())
+                .unwrap();
+        assert!(solve_error(&mut s3, &a) < 1e-12);
+        assert!(s3.rebind(&a3, &interface_searched(&a3, m).unwrap()));
+        let err = solve_error(&mut s3, &a3);
+        assert!(err < 1e-12, "max error {err}");
+        // a new entry inside a body: its block's pattern changed, a new analysis is needed
+        let a4 = with(&[(2, 5, -0.1), (5, 2, -0.1)], 1.0);
+        let mut s4 =
+            InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default())
+                .unwrap();
+        assert!(!s4.rebind(&a4, &interface_searched(&a4, m).unwrap()));
+        // an interface that grew (a body unknown coupled to a multiplier): the same
+        let a5 = with(&[(m + 2, 7, 1.0), (7, m + 2, 1.0)], 1.0);
+        let mut s5 =
+            InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default())
+                .unwrap();
+        assert!(!s5.rebind(&a5, &interface_searched(&a5, m).unwrap()));
+    }
+
+    #[test]
+    fn the_searched_interface_is_the_one_from_transpose_positions() {
+        let a = two_bodies(30);
+        let t = transpose_positions(&a);
+        assert_eq!(interface_of(&a, 60, &t), interface_searched(&a, 60));
     }
 }
