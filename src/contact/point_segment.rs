@@ -137,7 +137,11 @@ pub struct PointToSegment {
     /// multiplier index → slave node
     pub mult_nodes: Vec<usize>,
     master_cells_of_node: HashMap<usize, Vec<usize>>,
+    /// Per point, its status and its pairing (master cell, parametric coordinate, whether
+    /// it is left out) at the start of the load step (restored when the step is cut: a
+    /// failed attempt may have paired points far from where the step started).
     saved_status: Vec<bool>,
+    saved_pairing: Vec<(usize, f64, bool)>,
     /// Slave nodes (nearest the points) whose status the last `update_status` changed.
     changed: Vec<usize>,
     /// Per slave cell, the master cells it may couple with: those near it initially, plus
@@ -398,6 +402,7 @@ impl PointToSegment {
             mult_nodes,
             master_cells_of_node,
             saved_status: vec![false; n_points],
+            saved_pairing: vec![],
             changed: vec![],
             candidates,
             candidates_generation: 0,
@@ -470,7 +475,17 @@ impl PointToSegment {
                 }
             }
         }
+        self.save_start();
+    }
+
+    /// The statuses and pairings a cut step restores.
+    fn save_start(&mut self) {
         self.saved_status = self.points.iter().map(|p| p.active).collect();
+        self.saved_pairing = self
+            .points
+            .iter()
+            .map(|p| (p.master, p.xi_m, p.excluded))
+            .collect();
     }
 
     fn current(mesh: &Mesh, u: &[f64], n: usize) -> [f64; 2] {
@@ -1034,7 +1049,7 @@ impl PointToSegment {
     }
 
     pub fn commit(&mut self, u: &[f64], lam: &[f64]) {
-        self.saved_status = self.points.iter().map(|p| p.active).collect();
+        self.save_start();
         self.u_start.copy_from_slice(u);
         if self.opts.friction.is_some() && self.opts.tangential_penalty.is_some() {
             // (the tangential multipliers are the forces)
@@ -1046,6 +1061,11 @@ impl PointToSegment {
     pub fn restore(&mut self) {
         for (p, &s) in self.points.iter_mut().zip(&self.saved_status) {
             p.active = s;
+        }
+        for (p, &(master, xi_m, excluded)) in self.points.iter_mut().zip(&self.saved_pairing) {
+            p.master = master;
+            p.xi_m = xi_m;
+            p.excluded = excluded;
         }
     }
 

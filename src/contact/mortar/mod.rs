@@ -554,8 +554,6 @@ impl ContactPair for Mortar {
             if add_to_pattern(&mut self.pattern_candidates, &near) {
                 self.pattern_generation += 1;
             }
-            // (also those a cut first step restores)
-            self.saved_candidates.clone_from(&near);
             self.candidates = near;
         }
         let (g, d, facing, sl) = self.gaps(mesh, u);
