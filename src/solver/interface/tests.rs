@@ -1,0 +1,196 @@
+//! Tests of the interface solve: exactness on a non-symmetric saddle point, storage
+//! reuse, rebinding a changed pattern.
+
+use super::*;
+use crate::solver::linear::transpose_positions;
+
+/// Two chains of springs (bodies) of `len` unknowns each; the second is held only
+/// through two multipliers tying its first unknowns to the first chain's last ones,
+/// with a non-symmetric friction-like term between the tied unknowns; a third
+/// multiplier is decoupled (an open point).
+fn two_bodies(len: usize) -> SparseMatrix {
+    SparseMatrix::from_entries(2 * len + 3, &two_bodies_entries(len))
+}
+
+fn two_bodies_entries(len: usize) -> Vec<(usize, usize, f64)> {
+    let mut e: Vec<(usize, usize, f64)> = vec![];
+    for body in 0..2 {
+        let o = body * len;
+        for i in 0..len {
+            let support = if body == 0 && i == 0 { 1.0 } else { 0.0 };
+            let ends = if i == 0 || i + 1 == len { 1.0 } else { 2.0 };
+            e.push((o + i, o + i, ends + support + 0.01 * i as f64));
+            if i + 1 < len {
+                e.push((o + i, o + i + 1, -1.0));
+                e.push((o + i + 1, o + i, -1.0));
+            }
+        }
+    }
+    let m = 2 * len;
+    for k in 0..2 {
+        let (a, b) = (len - 1 - k, len + k); // tied pair
+        e.push((m + k, a, 1.0));
+        e.push((a, m + k, 1.0));
+        e.push((m + k, b, -1.0));
+        e.push((b, m + k, -1.0));
+        e.push((m + k, m + k, 0.0));
+        e.push((a, b, 0.3)); // non-symmetric coupling
+        e.push((b, a, -0.2));
+    }
+    e.push((m + 2, m + 2, 2.0)); // an open contact point: decoupled multiplier
+    e
+}
+
+#[test]
+fn interface_solve_is_exact_on_a_nonsymmetric_saddle_point_system() {
+    let len = 30;
+    let a = two_bodies(len);
+    let t = transpose_positions(&a);
+    let in_gamma = interface_of(&a, 2 * len, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
+    assert_eq!(s.blocks.len(), 2, "the chains are two blocks");
+    assert_eq!(
+        s.gamma.len(),
+        4 + 3,
+        "four tied unknowns and three multipliers"
+    );
+    s.factor(&a).unwrap();
+    assert_eq!(
+        s.decoupled.len(),
+        1,
+        "the open point's multiplier is solved alone"
+    );
+    let x: Vec<f64> = (0..a.n).map(|i| (0.37 * i as f64).sin() + 0.5).collect();
+    let mut b = vec![0.0; a.n];
+    a.mul_vec(&x, &mut b);
+    s.solve(&mut b);
+    let err = b
+        .iter()
+        .zip(&x)
+        .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()));
+    assert!(err < 1e-12, "max error {err}");
+
+    // An active-set re-solve: new interface values (a multiplier's row), a right-hand
+    // side changed in the interface rows only. The blocks' factorisations and forward
+    // passes are reused; the result still solves the new system.
+    let mut a2 = a.clone();
+    let m = 2 * len;
+    let p = a2.position(m + 2, m + 2).unwrap();
+    a2.values[p] = 5.0;
+    let mut b2 = vec![0.0; a.n];
+    a.mul_vec(&x, &mut b2);
+    for &g in &s.gamma {
+        b2[g] += 0.25 * (g as f64).cos();
+    }
+    s.factor(&a2).unwrap();
+    let res = solve_residual(&mut s, &a2, &b2);
+    assert!(s.blocks.iter().all(|blk| blk.last_forward.is_some()));
+    assert!(res < 1e-12, "max residual {res}");
+}
+
+/// The largest entry of a2 x − b, x solved by `s` (factorised already).
+fn solve_residual(s: &mut InterfaceSolver, a: &SparseMatrix, b: &[f64]) -> f64 {
+    let mut x = b.to_vec();
+    s.solve(&mut x);
+    let mut r = vec![0.0; a.n];
+    a.mul_vec(&x, &mut r);
+    r.iter()
+        .zip(b)
+        .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()))
+}
+
+/// The largest error of a solve of `a` by `s` (factorised here) with a known solution.
+fn solve_error(s: &mut InterfaceSolver, a: &SparseMatrix) -> f64 {
+    s.factor(a).unwrap();
+    let x: Vec<f64> = (0..a.n).map(|i| (0.61 * i as f64).cos() - 0.2).collect();
+    let mut b = vec![0.0; a.n];
+    a.mul_vec(&x, &mut b);
+    s.solve(&mut b);
+    b.iter()
+        .zip(&x)
+        .fold(0.0f64, |m, (u, v)| m.max((u - v).abs()))
+}
+
+#[test]
+fn an_analysis_in_the_storage_of_another_solves_exactly() {
+    // the blocks' factors of a larger analysis serve a smaller one, then the other way
+    // round (they grow)
+    let mut storage = Storage::default();
+    for len in [40, 20, 50] {
+        let a = two_bodies(len);
+        let t = transpose_positions(&a);
+        let in_gamma = interface_of(&a, 2 * len, &t).expect("small interface");
+        let mut s = InterfaceSolver::new(&a, in_gamma, storage).unwrap();
+        let err = solve_error(&mut s, &a);
+        assert!(err < 1e-12, "{len} unknowns per body: max error {err}");
+        storage = s.into_storage();
+        assert_eq!(storage.factors.len(), 2, "each block's factor is kept");
+    }
+}
+
+#[test]
+fn too_large_an_interface_is_declined() {
+    // every unknown coupled to a multiplier: nothing to condense
+    let len = 3;
+    let a = two_bodies(len);
+    let t = transpose_positions(&a);
+    assert!(interface_of(&a, 2 * len, &t).is_none());
+}
+
+#[test]
+fn a_pattern_changed_between_interface_unknowns_keeps_the_analysis() {
+    let len = 30;
+    let m = 2 * len;
+    let a = two_bodies(len);
+    let t = transpose_positions(&a);
+    let in_gamma = interface_of(&a, m, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
+    assert!(solve_error(&mut s, &a) < 1e-12);
+    let with = |extra: &[(usize, usize, f64)], body_scale: f64| {
+        let mut e = two_bodies_entries(len);
+        for entry in e.iter_mut().filter(|(r, c, _)| *r < m && *c < m) {
+            entry.2 *= body_scale;
+        }
+        e.extend_from_slice(extra);
+        SparseMatrix::from_entries(m + 3, &e)
+    };
+    // the open point closes on the first chain's last unknown (both in the interface):
+    // a new pattern, the same blocks, their values unchanged
+    let closing = [(m + 2, len - 1, 1.0), (len - 1, m + 2, 1.0)];
+    let a2 = with(&closing, 1.0);
+    assert_ne!(a2.row_idx, a.row_idx, "the pattern changed");
+    assert!(s.rebind(&a2, &interface_searched(&a2, m).unwrap()));
+    s.factor(&a2).unwrap();
+    assert!(
+        s.blocks.iter().all(|b| b.last_forward.is_some()),
+        "the blocks' factorisations are kept"
+    );
+    let b: Vec<f64> = (0..a2.n).map(|i| (0.3 * i as f64).sin()).collect();
+    let res = solve_residual(&mut s, &a2, &b);
+    assert!(res < 1e-12, "max residual {res}");
+    // the same pattern change with the bodies' values changed: refactorised, exact
+    let a3 = with(&closing, 1.5);
+    let mut s3 =
+        InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default()).unwrap();
+    assert!(solve_error(&mut s3, &a) < 1e-12);
+    assert!(s3.rebind(&a3, &interface_searched(&a3, m).unwrap()));
+    let err = solve_error(&mut s3, &a3);
+    assert!(err < 1e-12, "max error {err}");
+    // a new entry inside a body: its block's pattern changed, a new analysis is needed
+    let a4 = with(&[(2, 5, -0.1), (5, 2, -0.1)], 1.0);
+    let mut s4 =
+        InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default()).unwrap();
+    assert!(!s4.rebind(&a4, &interface_searched(&a4, m).unwrap()));
+    // an interface that grew (a body unknown coupled to a multiplier): the same
+    let a5 = with(&[(m + 2, 7, 1.0), (7, m + 2, 1.0)], 1.0);
+    let mut s5 =
+        InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default()).unwrap();
+    assert!(!s5.rebind(&a5, &interface_searched(&a5, m).unwrap()));
+}
+
+#[test]
+fn the_searched_interface_is_the_one_from_transpose_positions() {
+    let a = two_bodies(30);
+    let t = transpose_positions(&a);
+    assert_eq!(interface_of(&a, 60, &t), interface_searched(&a, 60));
+}
