@@ -127,6 +127,14 @@ struct Point {
     xi_m: f64,
 }
 
+/// What a cut step restores of a point (see `Point`).
+struct Saved {
+    active: bool,
+    master: usize,
+    xi_m: f64,
+    excluded: bool,
+}
+
 pub struct PointToSegment {
     pub slave: Surface,
     pub master: Surface,
@@ -137,11 +145,10 @@ pub struct PointToSegment {
     /// multiplier index → slave node
     pub mult_nodes: Vec<usize>,
     master_cells_of_node: HashMap<usize, Vec<usize>>,
-    /// Per point, its status and its pairing (master cell, parametric coordinate, whether
-    /// it is left out) at the start of the load step (restored when the step is cut: a
-    /// failed attempt may have paired points far from where the step started).
-    saved_status: Vec<bool>,
-    saved_pairing: Vec<(usize, f64, bool)>,
+    /// Per point, its status and its pairing at the start of the load step (restored when
+    /// the step is cut: a failed attempt may have paired points far from where the step
+    /// started).
+    saved: Vec<Saved>,
     /// Slave nodes (nearest the points) whose status the last `update_status` changed.
     changed: Vec<usize>,
     /// Per slave cell, the master cells it may couple with: those near it initially, plus
@@ -390,10 +397,9 @@ impl PointToSegment {
             let excluded = opts.contact_excluded.clone();
             opts.friction_excluded.extend(excluded);
         }
-        let n_points = points.len();
         let n_mult = mult_nodes.len();
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
-        PointToSegment {
+        let mut pair = PointToSegment {
             slave,
             master,
             opts,
@@ -401,8 +407,7 @@ impl PointToSegment {
             mult_of,
             mult_nodes,
             master_cells_of_node,
-            saved_status: vec![false; n_points],
-            saved_pairing: vec![],
+            saved: vec![],
             changed: vec![],
             candidates,
             candidates_generation: 0,
@@ -413,7 +418,10 @@ impl PointToSegment {
             reported_from_neighbours,
             mult_coords,
             q_start: vec![0.0; n_mult],
-        }
+        };
+        // (every point inactive until `initialise`)
+        pair.save_start();
+        pair
     }
 
     /// Normal multipliers on the slave nodes, then (with friction) tangential ones.
@@ -480,11 +488,15 @@ impl PointToSegment {
 
     /// The statuses and pairings a cut step restores.
     fn save_start(&mut self) {
-        self.saved_status = self.points.iter().map(|p| p.active).collect();
-        self.saved_pairing = self
+        self.saved = self
             .points
             .iter()
-            .map(|p| (p.master, p.xi_m, p.excluded))
+            .map(|p| Saved {
+                active: p.active,
+                master: p.master,
+                xi_m: p.xi_m,
+                excluded: p.excluded,
+            })
             .collect();
     }
 
@@ -1059,13 +1071,11 @@ impl PointToSegment {
     }
 
     pub fn restore(&mut self) {
-        for (p, &s) in self.points.iter_mut().zip(&self.saved_status) {
-            p.active = s;
-        }
-        for (p, &(master, xi_m, excluded)) in self.points.iter_mut().zip(&self.saved_pairing) {
-            p.master = master;
-            p.xi_m = xi_m;
-            p.excluded = excluded;
+        for (p, s) in self.points.iter_mut().zip(&self.saved) {
+            p.active = s.active;
+            p.master = s.master;
+            p.xi_m = s.xi_m;
+            p.excluded = s.excluded;
         }
     }
 

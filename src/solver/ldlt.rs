@@ -327,16 +327,20 @@ impl OrderedLdlt {
     }
 
     /// Takes a matrix of another pattern as the analysed one when the two are the same
-    /// (in the analysed order): `column(j, out)` puts into `out` the entries of column j of
-    /// its lower triangle in the factorised order, as (row, label) in any order. Each entry
+    /// (in the analysed order): `column(j, c, out)` puts into `out` the entries of column j
+    /// of its lower triangle in the factorised order (c: the matrix's column there), as
+    /// (row, label) in any order. Each entry
     /// is then labelled by its label (what `factor_with` and `origins` give). False when
     /// the patterns differ; the labels are then partly rewritten (the analysis is
     /// unusable).
-    pub fn rebind_with(&mut self, mut column: impl FnMut(usize, &mut Vec<(usize, usize)>)) -> bool {
+    pub fn rebind_with(
+        &mut self,
+        mut column: impl FnMut(usize, usize, &mut Vec<(usize, usize)>),
+    ) -> bool {
         let mut col = vec![];
         for j in 0..self.fwd.len() {
             col.clear();
-            column(j, &mut col);
+            column(j, self.fwd[j], &mut col);
             let range = self.permuted.col_range(j);
             if col.len() != range.len() {
                 return false;

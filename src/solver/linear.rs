@@ -258,14 +258,12 @@ impl LinearSolver {
     }
 
     /// A changed pattern that the interface condensation in hand takes as its own (see
-    /// `InterfaceSolver::rebind`): no new analysis.
+    /// `InterfaceSolver::rebind`): no new analysis. (A condensation exists only on the
+    /// saddle-point path without LU fallback.)
     fn rebind(&mut self, a: &SparseMatrix) -> bool {
         let Some(Factorisation::Interface(s)) = self.ldlt.as_mut() else {
             return false;
         };
-        if self.method != Method::SaddleLdlt || self.lu_fallback {
-            return false;
-        }
         interface_searched(a, self.n_primal).is_some_and(|in_gamma| s.rebind(a, &in_gamma))
     }
 

@@ -4,7 +4,7 @@
 //! |---|---|
 //! | `continuation.rs` | large kinematics' first load step started from its linear-kinematics solution |
 //! | `gmres.rs` | right-preconditioned GMRES (non-symmetric tangents on the LDLᵀ of their symmetric part) |
-//! | `interface.rs` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
+//! | `interface/` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
 //! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
 //! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
 //! | `line_search.rs` | backtracking on the residual with each trial point's contact statuses |

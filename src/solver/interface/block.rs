@@ -135,19 +135,18 @@ impl Block {
         for (j, &l) in self.ldlt.order().iter().enumerate() {
             at[self.unknowns[l]] = j;
         }
-        let order = self.ldlt.order().to_vec();
+        let unknowns = &self.unknowns;
         let mut diagonal = vec![NONE; interior];
         // The block's matrix (see `local_pattern`): in an interior column, its interior rows
         // and its interface rows; in an interface column, its interior rows and its
         // diagonal (NONE). The interface unknowns are ordered last, so the lower triangle of
         // an interface column holds its diagonal alone.
-        let rebound = self.ldlt.rebind_with(|j, out| {
-            let l = order[j];
+        let rebound = self.ldlt.rebind_with(|j, l, out| {
             if l >= interior {
                 out.push((j, NONE));
                 return;
             }
-            let c = self.unknowns[l];
+            let c = unknowns[l];
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
                 let r = at[a.row_idx[p]];
                 if r != NONE && r >= j {
