@@ -7,16 +7,14 @@
 
 mod common;
 
+use common::arctan::Arctan;
 use common::{bodies, case_head};
-use tribo::assembly::matrix::SparseMatrix;
 use tribo::case::{self, schema::CaseFile};
 use tribo::contact::problem::ContactProblem;
-use tribo::error::Result;
 use tribo::mesh::generate::rectangle;
 use tribo::mesh::{CellKind, Mesh};
 use tribo::solver::linear::Method;
 use tribo::solver::newton::{solve, NewtonReport, NewtonSettings, Nonlinear};
-use tribo::solver::problem::Norms;
 
 /// A 1 × 0.5 block on a 4 × 1 foundation (clamped below), its top pressed down 0.01 (2 %
 /// strain) and moved 0.002 sideways in one load step: with μ = 0.3 the block's edges slip
@@ -110,55 +108,12 @@ fn point_to_segment_takes_no_linear_stage() {
     check("point-to-segment", false);
 }
 
-/// One unknown: with "large kinematics" R(x, t) = atan(x) − t·atan(1) (root x = 1 at
-/// t = 1); with "linear kinematics" R(x, t) = x − t·root (root `linear_root` at t = 1).
-/// Full Newton on the arctangent converges from 0 but overshoots without end from x = 4.
-struct Stiffening {
-    x: f64,
-    linear: bool,
-    linear_root: f64,
-    k: SparseMatrix,
-}
-
-impl Nonlinear for Stiffening {
-    fn num_unknowns(&self) -> usize {
-        1
-    }
-    fn unknowns(&self) -> Vec<f64> {
-        vec![self.x]
-    }
-    fn evaluate(&mut self, x: &[f64], t: f64, r: &mut [f64], _tangent: bool) -> Result<Norms> {
-        self.x = x[0];
-        (r[0], self.k.values[0]) = if self.linear {
-            (x[0] - t * self.linear_root, 1.0)
-        } else {
-            (x[0].atan() - t * 1f64.atan(), 1.0 / (1.0 + x[0] * x[0]))
-        };
-        Ok(Norms {
-            residual: r[0].abs(),
-            reference: 1.0,
-            constraint: 0.0,
-        })
-    }
-    fn matrix(&self) -> &SparseMatrix {
-        &self.k
-    }
-    fn line_search(&self) -> bool {
-        false
-    }
-    fn set_linear_kinematics(&mut self, linear: bool) -> bool {
-        self.linear = linear;
-        true
-    }
-}
-
+/// The arctangent (from 0, where full Newton converges) with a linear form whose root at
+/// t = 1 is `linear_root`.
 fn solve_stiffening(linear_root: f64) -> (f64, NewtonReport) {
-    let mut p = Stiffening {
-        x: 0.0,
-        linear: false,
-        linear_root,
-        k: SparseMatrix::from_entries(1, &[(0, 0, 1.0)]),
-    };
+    let mut p = Arctan::new(0.0);
+    p.linear_root = Some(linear_root);
+    p.line_search = false;
     let settings = NewtonSettings {
         tolerance: 1e-12,
         max_cuts: 0,

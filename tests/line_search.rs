@@ -4,39 +4,11 @@
 //! step, quadratically at the end; and on a contact problem the line search lets mortar
 //! take the whole SSNP154 F load in one step where it used to cut the step.
 
-use tribo::assembly::matrix::SparseMatrix;
-use tribo::error::Result;
+mod common;
+
+use common::arctan::Arctan;
 use tribo::solver::linear::Method;
-use tribo::solver::newton::{solve, NewtonSettings, Nonlinear};
-use tribo::solver::problem::Norms;
-
-/// One unknown, R(x, t) = atan(x) − t·atan(1): the root at t = 1 is x = 1.
-struct Arctan {
-    x: f64,
-    k: SparseMatrix,
-}
-
-impl Nonlinear for Arctan {
-    fn num_unknowns(&self) -> usize {
-        1
-    }
-    fn unknowns(&self) -> Vec<f64> {
-        vec![self.x]
-    }
-    fn evaluate(&mut self, x: &[f64], t: f64, r: &mut [f64], _tangent: bool) -> Result<Norms> {
-        self.x = x[0];
-        r[0] = x[0].atan() - t * 1f64.atan();
-        self.k.values[0] = 1.0 / (1.0 + x[0] * x[0]);
-        Ok(Norms {
-            residual: r[0].abs(),
-            reference: 1.0,
-            constraint: 0.0,
-        })
-    }
-    fn matrix(&self) -> &SparseMatrix {
-        &self.k
-    }
-}
+use tribo::solver::newton::{solve, NewtonSettings};
 
 #[test]
 fn full_newton_corrections_that_overshoot_are_shortened_and_newton_converges() {
@@ -50,10 +22,7 @@ fn full_newton_corrections_that_overshoot_are_shortened_and_newton_converges() {
         );
         x = next;
     }
-    let mut p = Arctan {
-        x: 4.0,
-        k: SparseMatrix::from_entries(1, &[(0, 0, 1.0)]),
-    };
+    let mut p = Arctan::new(4.0);
     let settings = NewtonSettings {
         tolerance: 1e-12,
         max_iterations: 30,

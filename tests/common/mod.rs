@@ -2,6 +2,7 @@
 //! imposed node by node.
 #![allow(dead_code)]
 
+pub mod arctan;
 pub mod patches;
 
 use tribo::assembly::dofs::DofMap;
