@@ -13,16 +13,25 @@ use tribo::mesh::generate::rectangle;
 use tribo::mesh::CellKind;
 use tribo::solver::newton::Nonlinear;
 
-fn restored_residual_is_the_committed_one(formulation: &str) {
+/// `swap`: the lower block's top is the slave; `model`: the modelisation (the blocks lie at
+/// x ≥ 0, so axisymmetry is meaningful).
+fn restored_residual_is_the_committed_one(formulation: &str, swap: bool, model: &str) {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 6, 2, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([0.15, 0.0], 1.7, 0.8, 5, 2, CellKind::Quad4, 0.0).unwrap();
     let mesh = common::bodies(&[("Lower", &lower), ("Upper", &upper)]);
+    let (slave, master) = if swap {
+        ("LowerTop", "UpperBottom")
+    } else {
+        ("UpperBottom", "LowerTop")
+    };
+    let pair = common::HELD_BELOW_CONTACT_ABOVE.replace(
+        "slave = \"UpperBottom\"\nmaster = \"LowerTop\"",
+        &format!("slave = \"{slave}\"\nmaster = \"{master}\"\nformulation = \"{formulation}\""),
+    );
+    assert!(pair.contains(formulation));
     let text = common::case_head(&[("LowerBody", 1000.0, 0.3), ("UpperBody", 3000.0, 0.25)])
-        + "[model]\nkinematics = \"large\"\n"
-        + &common::HELD_BELOW_CONTACT_ABOVE.replace(
-            "master = \"LowerTop\"",
-            &format!("master = \"LowerTop\"\nformulation = \"{formulation}\""),
-        );
+        + &format!("[model]\nkinematics = \"large\"\nmodelisation = \"{model}\"\n")
+        + &pair;
     let case: CaseFile = toml::from_str(&text).unwrap();
     let solid = build_problem(&case, &mesh).unwrap();
     let pairs = build_pairs(&case, &mesh).unwrap();
@@ -69,22 +78,34 @@ fn restored_residual_is_the_committed_one(formulation: &str) {
         .fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
     assert!(
         worst <= 1e-12 * scale,
-        "{formulation}: the restored residual differs from the committed one by {worst:.3e} \
+        "{formulation} {model} (slave swapped: {swap}): the restored residual differs from the committed one by {worst:.3e} \
          (scale {scale:.3e})"
     );
 }
 
 #[test]
 fn mortar_restores_the_step_start() {
-    restored_residual_is_the_committed_one("mortar");
+    for swap in [false, true] {
+        for model in ["plane_strain", "axisymmetric"] {
+            restored_residual_is_the_committed_one("mortar", swap, model);
+        }
+    }
 }
 
 #[test]
 fn point_to_segment_restores_the_step_start() {
-    restored_residual_is_the_committed_one("point-to-segment");
+    for swap in [false, true] {
+        for model in ["plane_strain", "axisymmetric"] {
+            restored_residual_is_the_committed_one("point-to-segment", swap, model);
+        }
+    }
 }
 
 #[test]
 fn node_to_segment_restores_the_step_start() {
-    restored_residual_is_the_committed_one("node-to-segment");
+    for swap in [false, true] {
+        for model in ["plane_strain", "axisymmetric"] {
+            restored_residual_is_the_committed_one("node-to-segment", swap, model);
+        }
+    }
 }
