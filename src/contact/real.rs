@@ -15,6 +15,11 @@ pub fn value<T: Real>(x: T) -> f64 {
     x.re()
 }
 
+/// The values of a vector's components.
+pub fn values<T: Real>(x: [T; 2]) -> [f64; 2] {
+    [value(x[0]), value(x[1])]
+}
+
 /// A constant: no derivatives.
 pub fn constant<T: Real>(x: f64) -> T {
     T::from(x)

@@ -1,7 +1,7 @@
 //! The active set's inputs: which slave nodes touch at the start, the nodal weighted gaps,
 //! D_j and coverage, and the weights that scale the multiplier rows.
 
-use super::super::projection::point_and_tangent;
+use super::super::projection::{point_and_tangent, step_settled};
 use super::geometry::cross;
 use super::Mortar;
 use crate::mesh::Mesh;
@@ -121,7 +121,7 @@ impl Mortar {
                     let (pm, tm) = point_and_tangent(mesh.kind(mc), &xm, xi);
                     let step = cross([pm[0] - x[0], pm[1] - x[1]], nv) / cross(tm, nv);
                     xi -= step;
-                    if step.abs() < 1e-13 {
+                    if step_settled(step, pm, tm) {
                         break;
                     }
                 }

@@ -7,8 +7,8 @@
 //! with dual numbers their exact derivatives (normals, segment ends, projections,
 //! Jacobians and the dual basis included), from the same code.
 
-use super::super::projection::{point_and_tangent, seg_shape};
-use super::super::real::{constant, value, Real};
+use super::super::projection::{point_and_tangent, seg_shape, step_settled};
+use super::super::real::{constant, value, values, Real};
 use super::geometry::{cross, norm, unit_normal};
 use super::Mortar;
 use crate::fem::quadrature::gauss_legendre;
@@ -206,7 +206,7 @@ impl Mortar {
                 }
                 let step = r / dr;
                 xi -= step;
-                if value(step).abs() < 1e-13 {
+                if step_settled(value(step), values(p), values(t)) {
                     return Some(xi);
                 }
                 if value(xi).abs() > 10.0 {
@@ -254,7 +254,7 @@ impl Mortar {
                     let (pm, tm) = point_and_tangent(mkind, &xm, xim);
                     let step = cross([pm[0] - p[0], pm[1] - p[1]], nf) / cross(tm, nf);
                     xim -= step;
-                    if value(step).abs() < 1e-13 {
+                    if step_settled(value(step), values(pm), values(tm)) {
                         ok = true;
                         break;
                     }
