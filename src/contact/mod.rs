@@ -9,7 +9,7 @@
 //! | `friction.rs` | Coulomb's law as a pure return map (semi-multiplier form) |
 //! | `pair.rs` | the `ContactPair` interface of the formulations |
 //! | `mortar/` | dual mortar, nodal weighted gaps and active set |
-//! | `point_segment.rs` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
+//! | `point_segment/` | the reference code's continuous formulation (augmented Lagrangian, per-point status) |
 //! | `overlap/` | the physical check: no contact node deep inside the other body |
 //! | `problem.rs` | `ContactProblem`: bodies + pairs as one nonlinear problem |
 

@@ -6,7 +6,7 @@
 //! | `builder.rs` | `MeshBuilder`: readers and generators push nodes, cells and groups; `finish` checks and orients, and puts 2D cells in no group into `ungrouped` |
 //! | `topology.rs` | edge → parent cell adjacency, outward orientation |
 //! | `quality.rs` | min angle, max aspect ratio, bounding box |
-//! | `gmsh.rs` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
+//! | `gmsh/` | Gmsh MSH 4.1 (ASCII, binary) and 2.2 (ASCII) reader |
 //! | `med.rs` | MED (HDF5) mesh reader |
 //! | `gmsh_write.rs`, `med_write.rs` | MSH 4.1/2.2 and MED writers (`tribo mesh convert`) |
 //! | `families.rs` | entities partitioned by their set of groups (for the writers) |

@@ -1,0 +1,69 @@
+//! Candidate search: the master cells within reach of each slave cell, by bounding boxes
+//! on the initial or a displaced geometry.
+
+use super::super::surface::Surface;
+use crate::mesh::Mesh;
+
+/// Master cells within reach of each slave cell on the initial geometry: those whose
+/// bounding box, grown by `margin` times the larger of the two cells' sizes, meets the
+/// slave cell's.
+pub fn initial_candidates(
+    mesh: &Mesh,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+) -> Vec<Vec<usize>> {
+    candidates_at(mesh, None, slave, master, margin)
+}
+
+/// The same on the geometry displaced by `u` (full dofs), when given.
+pub fn candidates_at(
+    mesh: &Mesh,
+    u: Option<&[f64]>,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+) -> Vec<Vec<usize>> {
+    candidates_within(mesh, u, slave, master, margin, 0.0)
+}
+
+/// The same, the boxes grown by at least `reach` (a distance).
+pub fn candidates_within(
+    mesh: &Mesh,
+    u: Option<&[f64]>,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+    reach: f64,
+) -> Vec<Vec<usize>> {
+    let bbox = |c: usize| {
+        let mut lo = [f64::MAX; 2];
+        let mut hi = [f64::MIN; 2];
+        for &n in mesh.cell_nodes(c) {
+            for d in 0..2 {
+                let x = mesh.coords[n][d] + u.map_or(0.0, |u| u[2 * n + d]);
+                lo[d] = lo[d].min(x);
+                hi[d] = hi[d].max(x);
+            }
+        }
+        (lo, hi)
+    };
+    let mboxes: Vec<_> = master.cells.iter().map(|&c| bbox(c)).collect();
+    slave
+        .cells
+        .iter()
+        .map(|&sc| {
+            let (slo, shi) = bbox(sc);
+            let ssize = (shi[0] - slo[0]).hypot(shi[1] - slo[1]);
+            mboxes
+                .iter()
+                .enumerate()
+                .filter(|(_, (lo, hi))| {
+                    let r = (margin * ssize.max((hi[0] - lo[0]).hypot(hi[1] - lo[1]))).max(reach);
+                    (0..2).all(|d| lo[d] - r <= shi[d] && slo[d] <= hi[d] + r)
+                })
+                .map(|(i, _)| i)
+                .collect()
+        })
+        .collect()
+}
