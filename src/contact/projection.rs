@@ -48,16 +48,16 @@ pub fn point_and_tangent<T: Real>(kind: CellKind, x: &[[T; 2]], xi: T) -> ([T; 2
     (p, t)
 }
 
-/// Whether a Newton step on a cell coordinate ξ has reached round-off: below 1e-13, or
-/// below what the coordinates allow. A point at |p| from the origin is known to about
+/// Whether a Newton step on a cell coordinate ξ has converged: below `tolerance`, or below
+/// what the coordinates allow. A point at |p| from the origin is known to about
 /// ε |p|; on a cell whose tangent dx/dξ has length |t| that is ε |p| / |t| in ξ, and the
 /// steps jitter there. A fine mesh far from the origin never gets them below 1e-13 (SSNP154
 /// A at 1.38M unknowns: 0.01 mm cells 8 mm out); a loop that waits for that gives up and
 /// drops the point, and the residual jumps.
-pub fn step_settled(step: f64, point: [f64; 2], tangent: [f64; 2]) -> bool {
+pub fn step_settled(step: f64, tolerance: f64, point: [f64; 2], tangent: [f64; 2]) -> bool {
     let scale = point[0].abs().max(point[1].abs());
     let length = tangent[0].hypot(tangent[1]);
-    step.abs() < 1e-13f64.max(64.0 * f64::EPSILON * scale / length)
+    step.abs() < tolerance.max(64.0 * f64::EPSILON * scale / length)
 }
 
 /// Projects `p` on the segment with node coordinates `x`.
@@ -85,7 +85,7 @@ pub fn project(kind: CellKind, x: &[[f64; 2]], p: [f64; 2]) -> Projection {
         let df = -(t[0] * t[0] + t[1] * t[1]) + d[0] * tt[0] + d[1] * tt[1];
         let step = f / df;
         xi -= step;
-        if step.abs() < 1e-14 || step_settled(step, q, t) {
+        if step_settled(step, 1e-14, q, t) {
             return Projection {
                 xi,
                 converged: true,

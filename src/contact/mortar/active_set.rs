@@ -121,7 +121,7 @@ impl Mortar {
                     let (pm, tm) = point_and_tangent(mesh.kind(mc), &xm, xi);
                     let step = cross([pm[0] - x[0], pm[1] - x[1]], nv) / cross(tm, nv);
                     xi -= step;
-                    if step_settled(step, pm, tm) {
+                    if step_settled(step, 1e-13, pm, tm) {
                         break;
                     }
                 }

@@ -206,7 +206,7 @@ impl Mortar {
                 }
                 let step = r / dr;
                 xi -= step;
-                if step_settled(value(step), values(p), values(t)) {
+                if step_settled(value(step), 1e-13, values(p), values(t)) {
                     return Some(xi);
                 }
                 if value(xi).abs() > 10.0 {
@@ -254,7 +254,7 @@ impl Mortar {
                     let (pm, tm) = point_and_tangent(mkind, &xm, xim);
                     let step = cross([pm[0] - p[0], pm[1] - p[1]], nf) / cross(tm, nf);
                     xim -= step;
-                    if step_settled(value(step), values(pm), values(tm)) {
+                    if step_settled(value(step), 1e-13, values(pm), values(tm)) {
                         ok = true;
                         break;
                     }
