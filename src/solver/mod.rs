@@ -11,7 +11,7 @@
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
 //! | `nonlinear.rs` | `Nonlinear`: what Newton needs from a problem; the iteration report |
-//! | `newton.rs` | load stepping, Newton iterations, step cutting, iteration report |
+//! | `newton/` | load stepping, Newton iterations, step cutting, iteration report |
 
 pub mod continuation;
 pub mod gmres;
