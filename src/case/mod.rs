@@ -4,7 +4,7 @@
 //! |---|---|
 //! | `schema.rs` | serde structs of the TOML format (unknown keys rejected) |
 //! | `checks.rs` | every value finite and in range, every key meaningful, before any work |
-//! | `loading.rs` | time functions, loads and imposed motions, step ends, output times |
+//! | `loading/` | time functions, loads and imposed motions, step ends, output times |
 //! | `pairs.rs` | the contact pairs |
 //! | `rigid/` | rigid surfaces moved by a reference point: mesh, dof links, reactions |
 //! | `solve.rs` | a run: the solve and its outcome, or what a failed one kept |

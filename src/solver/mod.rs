@@ -6,7 +6,7 @@
 //! | `gmres.rs` | right-preconditioned GMRES (non-symmetric tangents on the LDLᵀ of their symmetric part) |
 //! | `interface/` | exact contact tangent solves condensed on the contact interface (bodies factorised in parallel) |
 //! | `history.rs` | time functions, rigid motions, loads and imposed values at a time t |
-//! | `ldlt.rs` | saddle-point LDLᵀ with the constrained ordering |
+//! | `ldlt/` | LDLᵀ in a fixed order; saddle-point LDLᵀ with the constrained ordering |
 //! | `line_search.rs` | backtracking on the residual with each trial point's contact statuses |
 //! | `linear.rs` | faer Cholesky / LU with symbolic reuse |
 //! | `problem.rs` | `SolidProblem`: residual, tangent, reactions of the discrete bodies |
