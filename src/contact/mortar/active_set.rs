@@ -1,8 +1,8 @@
 //! The active set's inputs: which slave nodes touch at the start, the nodal weighted gaps,
 //! D_j and coverage, and the weights that scale the multiplier rows.
 
-use super::super::projection::{point_and_tangent, step_settled};
-use super::geometry::cross;
+use super::super::projection::point_and_tangent;
+use super::geometry::project_along;
 use super::Mortar;
 use crate::mesh::Mesh;
 
@@ -116,15 +116,7 @@ impl Mortar {
                     .iter()
                     .map(|&m| Self::pos(mesh, u, m))
                     .collect();
-                let mut xi = 0.0;
-                for _ in 0..30 {
-                    let (pm, tm) = point_and_tangent(mesh.kind(mc), &xm, xi);
-                    let step = cross([pm[0] - x[0], pm[1] - x[1]], nv) / cross(tm, nv);
-                    xi -= step;
-                    if step_settled(step, 1e-13, pm, tm) {
-                        break;
-                    }
-                }
+                let (xi, _) = project_along(mesh.kind(mc), &xm, x, nv);
                 if xi.abs() <= 1.0 + 1e-9 {
                     let (pm, _) = point_and_tangent(mesh.kind(mc), &xm, xi);
                     out.push(((pm[0] - x[0]) * nv[0] + (pm[1] - x[1]) * nv[1], size));

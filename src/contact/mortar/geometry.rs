@@ -3,8 +3,8 @@
 //! The normals and the measure are generic over the number type, so that the tangent
 //! differentiates them exactly.
 
-use super::super::projection::point_and_tangent;
-use super::super::real::{constant, value, Real};
+use super::super::projection::{point_and_tangent, step_settled};
+use super::super::real::{constant, value, values, Real};
 use super::super::surface::Surface;
 use super::Mortar;
 use crate::fem::element::{shape, MAX_NODES};
@@ -13,6 +13,26 @@ use std::collections::HashMap;
 
 pub(super) fn cross<T: Real>(a: [T; 2], b: [T; 2]) -> T {
     a[0] * b[1] - a[1] * b[0]
+}
+
+/// The coordinate ξ on a master cell (node positions xm) where the line through `p` along
+/// `n` crosses it: Newton from ξ = 0, and whether it settled within 30 steps.
+pub(super) fn project_along<T: Real>(
+    kind: CellKind,
+    xm: &[[T; 2]],
+    p: [T; 2],
+    n: [T; 2],
+) -> (T, bool) {
+    let mut xi = constant(0.0);
+    for _ in 0..30 {
+        let (pm, tm) = point_and_tangent(kind, xm, xi);
+        let step = cross([pm[0] - p[0], pm[1] - p[1]], n) / cross(tm, n);
+        xi -= step;
+        if step_settled(value(step), 1e-13, values(pm), values(tm)) {
+            return (xi, true);
+        }
+    }
+    (xi, false)
 }
 
 /// Euclidean length of a 2-vector.

@@ -9,7 +9,7 @@
 
 use super::super::projection::{point_and_tangent, seg_shape, step_settled};
 use super::super::real::{constant, value, values, Real};
-use super::geometry::{cross, norm, unit_normal};
+use super::geometry::{cross, norm, project_along, unit_normal};
 use super::Mortar;
 use crate::fem::quadrature::gauss_legendre;
 use crate::mesh::Mesh;
@@ -248,17 +248,7 @@ impl Mortar {
                 let xi = (lo + hi) * 0.5 + (hi - lo) * (0.5 * g);
                 let (nv, _, p, t, nf) = field(xi);
                 // project along the normal field on the master cell
-                let mut xim = zero;
-                let mut ok = false;
-                for _ in 0..30 {
-                    let (pm, tm) = point_and_tangent(mkind, &xm, xim);
-                    let step = cross([pm[0] - p[0], pm[1] - p[1]], nf) / cross(tm, nf);
-                    xim -= step;
-                    if step_settled(value(step), 1e-13, values(pm), values(tm)) {
-                        ok = true;
-                        break;
-                    }
-                }
+                let (xim, ok) = project_along(mkind, &xm, p, nf);
                 if !ok || value(xim).abs() > 1.0 + 1e-9 {
                     continue;
                 }
