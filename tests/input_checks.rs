@@ -182,16 +182,17 @@ fn a_closed_or_full_stdout_ends_quietly_with_a_non_zero_status() {
     )
     .unwrap();
     write(&msh, &m, MshVersion::V41).unwrap();
-    // a pipe whose reader is gone
-    let mut child = Command::new(env!("CARGO_BIN_EXE_tribo"))
+    // a pipe whose reader is gone before the command starts (closed after the spawn, it
+    // raced the command's output: on a busy machine the output fitted in the pipe first)
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    let out = Command::new(env!("CARGO_BIN_EXE_tribo"))
         .args(["mesh", "info"])
         .arg(&msh)
-        .stdout(Stdio::piped())
+        .stdout(writer)
         .stderr(Stdio::piped())
-        .spawn()
+        .output()
         .unwrap();
-    drop(child.stdout.take());
-    let out = child.wait_with_output().unwrap();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_ne!(out.status.code(), Some(0));
