@@ -81,8 +81,6 @@ pub(super) fn iterate_step(
     let mut resolves = 0;
     let mut linearised_resolves = 0;
     let mut linearised_seen: Vec<u64> = vec![];
-    // the slave nodes whose statuses the last update changed (sorted)
-    let mut last_changed: Vec<usize> = vec![];
     // the plain Newton iterate a re-solve replaced
     let mut before_resolve: Option<Vec<f64>> = None;
     // the correction of the plain Newton iterate that started this point's re-solves
@@ -437,22 +435,12 @@ pub(super) fn iterate_step(
         let before = changes;
         changes = problem.update_status(x, lambda)?;
         // Re-solves settle a few statuses. One that changes more of them than the one
-        // before it, and more than half as many as started them, mostly at nodes the one
-        // before it changed, is swinging, not settling (SSNP154 D at 0.05 mm, a step's
-        // start: 154, 127, 149, 139 … changes, and corrections that then threw the
-        // residual up; the reference mesh's 7, 1, 2, 2 settle): Newton goes on from the
-        // plain iterate, as without re-solves, and takes no more in this step. A contact
-        // zone that grows by many cells also changes more statuses at each re-solve, but
-        // at new nodes (SSNP154 A at 348k unknowns, a step's start: 114, 123, 147, 193,
-        // 233 changes, 17–34 % of them at nodes just changed; its re-solves then settle,
-        // where taking the plain iterate back cut the step).
-        let repeats = problem
-            .changed_nodes()
-            .iter()
-            .filter(|n| last_changed.binary_search(n).is_ok())
-            .count();
-        let swinging = changes > before && 2 * changes > first_changes && 2 * repeats > changes;
-        if resolve && swinging {
+        // before it, and more than half as many as started them, is swinging, not
+        // settling (SSNP154 D at 0.05 mm, a step's start: 154, 127, 149, 139 …
+        // changes, and corrections that then threw the residual up; the reference
+        // mesh's 7, 1, 2, 2 settle): Newton goes on from the plain iterate, as without
+        // re-solves, and takes no more in this step.
+        if resolve && changes > before && 2 * changes > first_changes {
             if let Some(dx) = plain_correction.take() {
                 for ((xi, &x0), d) in x.iter_mut().zip(&x_lin).zip(&dx) {
                     *xi = x0 + d;
@@ -468,8 +456,6 @@ pub(super) fn iterate_step(
                 *status_counts.entry(n).or_default() += 1;
             }
         }
-        last_changed = problem.changed_nodes();
-        last_changed.sort_unstable();
         step.iterations.last_mut().unwrap().status_changes = changes;
         if settings.verbose && changes > 0 {
             eprintln!("                        {changes} contact status changes");
