@@ -5,8 +5,7 @@ use faer::linalg::lu::partial_pivoting::{factor as lu_factor, solve as lu_solve}
 use faer::perm::PermRef;
 use faer::{Mat, Par};
 
-/// Dense LU with partial pivoting, in place in the interface matrix: its leading k × k
-/// block holds the factors. The factorisation runs on the pool's threads (the blocks are
+/// Dense LU with partial pivoting, in place in the interface matrix. The factorisation runs on the pool's threads (the blocks are
 /// done by then): faer splits the updates of the trailing matrix, not the sums of any
 /// entry, so the factors are those of the sequential LU bit for bit (tested), on any
 /// machine. On the 2-core machine: 1.3× faster at k = 2000, 1.5× at 3000, 1.8× at 5000;
@@ -44,38 +43,36 @@ impl Default for DenseLu {
 }
 
 impl DenseLu {
-    /// A zero k × k matrix in the storage of the last factors (grown if too small).
-    pub(super) fn take_storage(&mut self, k: usize) -> Mat<f64> {
+    /// A zero k × k matrix in the storage of the last factors. Storage too small is
+    /// replaced by one with room for k + k/16 (at most `limit`): the number of coupled
+    /// interface unknowns moves by a few with the contact statuses, and each new storage
+    /// is fresh pages to fault in.
+    pub(super) fn take_storage(&mut self, k: usize, limit: usize) -> Mat<f64> {
         let capacity = self.capacity;
         let mut t = std::mem::take(self).lu;
         if capacity < k {
             // (freed first: the old values are not needed)
             drop(t);
-            self.capacity = k;
-            return Mat::zeros(k, k);
+            let room = (k + k / 16).min(limit).max(k);
+            self.capacity = room;
+            t = Mat::zeros(room, room);
+        } else {
+            self.capacity = capacity;
         }
-        self.capacity = capacity;
         t.resize_with(k, k, |_, _| 0.0);
         t.fill(0.0);
         t
     }
 
-    /// Factorises the rows and columns `kept` (increasing) of `t`, which it takes: they
-    /// are first packed into its leading block, in place (column by column, each entry
-    /// read from at or after where it is written, so from nothing overwritten yet).
-    pub(super) fn factor(&mut self, mut t: Mat<f64>, kept: &[usize]) {
-        let k = kept.len();
-        for (j, &kj) in kept.iter().enumerate() {
-            for (i, &ki) in kept.iter().enumerate() {
-                t[(i, j)] = t[(ki, kj)];
-            }
-        }
+    /// Factorises `t` (square), which it takes.
+    pub(super) fn factor(&mut self, t: Mat<f64>) {
+        let k = t.nrows();
         self.lu = t;
         self.k = k;
         self.perm.resize(k, 0);
         self.perm_inv.resize(k, 0);
         lu_in_place(
-            self.lu.as_mut().submatrix_mut(0, 0, k, k),
+            self.lu.as_mut(),
             &mut self.perm,
             &mut self.perm_inv,
             factor_par(k),
@@ -84,7 +81,8 @@ impl DenseLu {
 
     pub(super) fn solve(&self, rhs: &mut Mat<f64>) {
         let k = self.k;
-        let lu = self.lu.as_ref().submatrix(0, 0, k, k);
+        let lu = self.lu.as_ref();
+        debug_assert_eq!(lu.nrows(), k);
         let perm = PermRef::new_checked(&self.perm, &self.perm_inv, k);
         let mut mem = MemBuffer::new(lu_solve::solve_in_place_scratch::<usize, f64>(
             k,
