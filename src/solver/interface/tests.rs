@@ -129,6 +129,32 @@ fn an_analysis_in_the_storage_of_another_solves_exactly() {
 }
 
 #[test]
+fn the_interface_matrix_follows_the_coupled_unknowns() {
+    // A tied point that opens (its multiplier's couplings zero, its row λ = 0) and closes
+    // again: the interface matrix is built for the coupled unknowns only, so it shrinks,
+    // then grows past its storage; each solve stays exact.
+    let len = 25;
+    let a = two_bodies(len);
+    let m = 2 * len;
+    let mut open = a.clone();
+    for (r, c) in [(m, len - 1), (len - 1, m), (m, len), (len, m)] {
+        let p = open.position(r, c).unwrap();
+        open.values[p] = 0.0;
+    }
+    let p = open.position(m, m).unwrap();
+    open.values[p] = 3.0;
+    let t = transpose_positions(&a);
+    let in_gamma = interface_of(&a, 2 * len, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
+    for (matrix, decoupled) in [(&open, 2), (&a, 1), (&open, 2)] {
+        let err = solve_error(&mut s, matrix);
+        assert_eq!(s.decoupled.len(), decoupled);
+        assert_eq!(s.kept.len() + decoupled, s.gamma.len());
+        assert!(err < 1e-12, "{decoupled} decoupled: max error {err}");
+    }
+}
+
+#[test]
 fn too_large_an_interface_is_declined() {
     // every unknown coupled to a multiplier: nothing to condense
     let len = 3;
