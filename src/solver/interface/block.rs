@@ -166,7 +166,9 @@ impl Block {
         true
     }
 
-    pub(super) fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
+    /// Factorises the block's matrix in `a`; false when its values are those factorised
+    /// last (nothing to do).
+    pub(super) fn factor(&mut self, a: &SparseMatrix) -> Result<bool> {
         // Unchanged values (a Newton iteration that updated the contact terms only, which
         // live in Γ × Γ): the factorisation stands. Each factorised entry is labelled by its
         // position in A (NONE: the shifted diagonal of an interface unknown).
@@ -177,7 +179,7 @@ impl Block {
                 .zip(&self.factored)
                 .all(|(&p, &v)| p == NONE || a.values[p] == v);
         if unchanged {
-            return Ok(());
+            return Ok(false);
         }
         self.factored.clear(); // until this factorisation succeeds
         self.last_forward = None;
@@ -227,6 +229,6 @@ impl Block {
                 .iter()
                 .map(|&p| if p == NONE { 0.0 } else { a.values[p] }),
         );
-        Ok(())
+        Ok(true)
     }
 }

@@ -79,7 +79,33 @@ impl DenseLu {
         );
     }
 
+    /// The smallest over the largest |pivot| (0 when there is none): how near singular.
+    pub(super) fn pivot_ratio(&self) -> f64 {
+        let d: Vec<f64> = (0..self.k).map(|i| self.lu[(i, i)].abs()).collect();
+        let max = d.iter().copied().fold(0.0f64, f64::max);
+        let min = d.iter().copied().fold(f64::INFINITY, f64::min);
+        if max > 0.0 && min.is_finite() {
+            min / max
+        } else {
+            0.0
+        }
+    }
+
     pub(super) fn solve(&self, rhs: &mut Mat<f64>) {
+        self.solve_with(rhs, DENSE_PAR);
+    }
+
+    /// As `solve`, the columns of `rhs` shared by the pool's threads when they are many.
+    pub(super) fn solve_many(&self, rhs: &mut Mat<f64>) {
+        let par = if rhs.ncols() >= 16 {
+            factor_par(self.k)
+        } else {
+            DENSE_PAR
+        };
+        self.solve_with(rhs, par);
+    }
+
+    fn solve_with(&self, rhs: &mut Mat<f64>, par: Par) {
         let k = self.k;
         let lu = self.lu.as_ref();
         debug_assert_eq!(lu.nrows(), k);
@@ -87,16 +113,9 @@ impl DenseLu {
         let mut mem = MemBuffer::new(lu_solve::solve_in_place_scratch::<usize, f64>(
             k,
             rhs.ncols(),
-            DENSE_PAR,
+            par,
         ));
-        lu_solve::solve_in_place(
-            lu,
-            lu,
-            perm,
-            rhs.as_mut(),
-            DENSE_PAR,
-            MemStack::new(&mut mem),
-        );
+        lu_solve::solve_in_place(lu, lu, perm, rhs.as_mut(), par, MemStack::new(&mut mem));
     }
 }
 

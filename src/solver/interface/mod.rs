@@ -18,13 +18,14 @@
 
 mod block;
 mod dense_lu;
+mod update;
 
 use crate::assembly::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 use block::Block;
 use dense_lu::DenseLu;
-use faer::Mat;
 use rayon::prelude::*;
+use update::{Factorised, Update, ZColumns};
 
 /// Larger interfaces go to the saddle-point LDLᵀ (GMRES on a symmetric approximation).
 /// The interface matrix is dense: k² memory and a k³ LU. A 2D contact zone's interface
@@ -46,11 +47,17 @@ pub struct InterfaceSolver {
     blocks: Vec<Block>,
     /// Entries of A inside Γ × Γ: (position in A, interface row, interface column).
     gamma_entries: Vec<(usize, usize, usize)>,
-    /// LU of the interface matrix restricted to `kept`; the `decoupled` unknowns (with
-    /// their diagonal) are solved alone.
+    /// LU of the interface matrix restricted to `kept` (`at[i]`: position of unknown i
+    /// there, NONE for a decoupled one, solved alone by its `diagonal`).
     lu: DenseLu,
     kept: Vec<usize>,
-    decoupled: Vec<(usize, f64)>,
+    at: Vec<usize>,
+    diagonal: Vec<f64>,
+    /// The values of A's interface entries the LU is of (empty: none usable), the
+    /// columns of Z computed since, and the change to apply after it (see `update.rs`).
+    factorised: Vec<f64>,
+    z: ZColumns,
+    update: Option<Update>,
 }
 
 /// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
@@ -219,7 +226,11 @@ impl InterfaceSolver {
             gamma_entries,
             lu,
             kept: vec![],
-            decoupled: vec![],
+            at: vec![],
+            diagonal: vec![],
+            factorised: vec![],
+            z: ZColumns::default(),
+            update: None,
         })
     }
 
@@ -252,6 +263,9 @@ impl InterfaceSolver {
             return false;
         }
         self.gamma_entries = gamma_entries(a, &self.gamma);
+        // (the LU's entries are no longer labelled: the next factorisation makes a new one)
+        self.factorised.clear();
+        self.update = None;
         true
     }
 
@@ -271,10 +285,17 @@ impl InterfaceSolver {
     /// given to `new`).
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         let k = self.gamma.len();
-        self.blocks
+        let refactored = self
+            .blocks
             .par_iter_mut()
             .map(|b| b.factor(a))
-            .collect::<Result<Vec<()>>>()?;
+            .collect::<Result<Vec<bool>>>()?;
+        // An active-set re-solve: the LU at hand and a low-rank change (`update.rs`).
+        if !refactored.contains(&true) && self.updated(a) {
+            return Ok(());
+        }
+        self.factorised.clear(); // until this factorisation is made
+        self.update = None;
         // Unknowns decoupled from the rest of the interface (the multipliers of open
         // contact points: row and column hold only the diagonal) are solved on their own;
         // the dense LU, k³, gets the others only, and the interface matrix is built for
@@ -308,13 +329,10 @@ impl InterfaceSolver {
                 "the system matrix is singular: non-finite interface matrix",
             ));
         }
-        self.decoupled.clear();
         self.kept.clear();
         let mut at = vec![NONE; k];
         for i in 0..k {
-            if !coupled[i] && diagonal[i] != 0.0 {
-                self.decoupled.push((i, diagonal[i]));
-            } else {
+            if coupled[i] || diagonal[i] == 0.0 {
                 at[i] = self.kept.len();
                 self.kept.push(i);
             }
@@ -342,7 +360,49 @@ impl InterfaceSolver {
             }
         }
         self.lu.factor(t);
+        self.at = at;
+        self.diagonal = diagonal;
+        self.factorised = self
+            .gamma_entries
+            .iter()
+            .map(|&(p, _, _)| a.values[p])
+            .collect();
+        self.z.clear(k);
         Ok(())
+    }
+
+    /// Takes `a`'s interface matrix as the one factorised plus a low-rank change, if the
+    /// change is small enough (`update.rs`): true when done. The blocks must be those
+    /// factorised.
+    fn updated(&mut self, a: &SparseMatrix) -> bool {
+        if self.factorised.len() != self.gamma_entries.len() {
+            return false;
+        }
+        let mut changes = vec![];
+        for (&(p, i, j), &old) in self.gamma_entries.iter().zip(&self.factorised) {
+            let v = a.values[p];
+            if !v.is_finite() {
+                return false;
+            }
+            if v.to_bits() != old.to_bits() {
+                changes.push((i, j, v - old));
+            }
+        }
+        let t = Factorised {
+            lu: &self.lu,
+            kept: &self.kept,
+            at: &self.at,
+            diagonal: &self.diagonal,
+        };
+        self.update = if changes.is_empty() {
+            None
+        } else {
+            match Update::new(changes, &t, &mut self.z) {
+                Some(u) => Some(u),
+                None => return false,
+            }
+        };
+        true
     }
 
     /// Solves with the last factorisation, in place: per block one forward pass (the
@@ -377,11 +437,7 @@ impl InterfaceSolver {
                 z
             })
             .collect();
-        let k = self.gamma.len();
-        let mut xg = Mat::<f64>::zeros(k, 1);
-        for (kk, &g) in self.gamma.iter().enumerate() {
-            xg[(kk, 0)] = rhs[g];
-        }
+        let mut xg: Vec<f64> = self.gamma.iter().map(|&g| rhs[g]).collect();
         for (blk, z) in self.blocks.iter().zip(&forward) {
             // L_ΓΓ z_Γ column by column (L is stored by columns); each row's sum still
             // adds its terms in the order of the columns
@@ -394,16 +450,18 @@ impl InterfaceSolver {
                 }
             }
             for (&gi, si) in blk.gamma.iter().zip(s) {
-                xg[(gi, 0)] += si;
+                xg[gi] += si;
             }
         }
-        let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| xg[(self.kept[i], 0)]);
-        self.lu.solve(&mut xr);
-        for (i, &g) in self.kept.iter().enumerate() {
-            xg[(g, 0)] = xr[(i, 0)];
-        }
-        for &(g, d) in &self.decoupled {
-            xg[(g, 0)] /= d;
+        let t = Factorised {
+            lu: &self.lu,
+            kept: &self.kept,
+            at: &self.at,
+            diagonal: &self.diagonal,
+        };
+        t.solve(&mut xg);
+        if let Some(u) = &self.update {
+            u.apply(&mut xg, &self.z);
         }
         // backward pass from [D_I⁻¹ z_I; L_ΓΓᵀ x_Γ]: its interface part is x_Γ, its
         // interior part A_II⁻¹ (b_I − A_IΓ x_Γ)
@@ -418,9 +476,9 @@ impl InterfaceSolver {
                     *v /= d;
                 }
                 for li in 0..blk.gamma.len() {
-                    let mut s = xg[(blk.gamma[li], 0)];
+                    let mut s = xg[blk.gamma[li]];
                     for lj in li + 1..blk.gamma.len() {
-                        s += blk.lgg[(lj, li)] * xg[(blk.gamma[lj], 0)];
+                        s += blk.lgg[(lj, li)] * xg[blk.gamma[lj]];
                     }
                     w[m + li] = s;
                 }
@@ -433,8 +491,8 @@ impl InterfaceSolver {
                 b[blk.unknowns[l]] = x;
             }
         }
-        for (kk, &g) in self.gamma.iter().enumerate() {
-            b[g] = xg[(kk, 0)];
+        for (&g, &x) in self.gamma.iter().zip(xg.iter()) {
+            b[g] = x;
         }
     }
 }

@@ -56,7 +56,7 @@ fn interface_solve_is_exact_on_a_nonsymmetric_saddle_point_system() {
     );
     s.factor(&a).unwrap();
     assert_eq!(
-        s.decoupled.len(),
+        s.at.iter().filter(|&&p| p == NONE).count(),
         1,
         "the open point's multiplier is solved alone"
     );
@@ -148,7 +148,7 @@ fn the_interface_matrix_follows_the_coupled_unknowns() {
     let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
     for (matrix, decoupled) in [(&open, 2), (&a, 1), (&open, 2)] {
         let err = solve_error(&mut s, matrix);
-        assert_eq!(s.decoupled.len(), decoupled);
+        assert_eq!(s.at.iter().filter(|&&p| p == NONE).count(), decoupled);
         assert_eq!(s.kept.len() + decoupled, s.gamma.len());
         assert!(err < 1e-12, "{decoupled} decoupled: max error {err}");
     }
@@ -219,4 +219,55 @@ fn the_searched_interface_is_the_one_from_transpose_positions() {
     let a = two_bodies(30);
     let t = transpose_positions(&a);
     assert_eq!(interface_of(&a, 60, &t), interface_searched(&a, 60));
+}
+
+/// Two chains of `len` springs tied at `ties` pairs of unknowns by multipliers (each with
+/// a non-symmetric friction-like coupling): an interface of 3 × `ties` unknowns. The ties
+/// in `open` are open: their multiplier's couplings zero, its row λ = 0.
+fn tied_chains(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
+    let mut e: Vec<(usize, usize, f64)> = two_bodies_entries(len)
+        .into_iter()
+        .filter(|&(r, c, _)| r < 2 * len && c < 2 * len)
+        .filter(|&(r, c, _)| r == c || (r < len) == (c < len))
+        .collect();
+    let m = 2 * len;
+    for k in 0..ties {
+        let (a, b) = (len - 1 - k, len + k);
+        let w = if open.contains(&k) { 0.0 } else { 1.0 };
+        e.extend([(m + k, a, w), (a, m + k, w), (m + k, b, -w), (b, m + k, -w)]);
+        e.push((m + k, m + k, 3.0 * (1.0 - w)));
+        e.extend([(a, b, 0.3 * w), (b, a, -0.2 * w)]);
+    }
+    SparseMatrix::from_entries(2 * len + ties, &e)
+}
+
+#[test]
+fn a_re_solve_updates_the_interface_lu_and_stays_exact() {
+    // Ties open and close between factorisations with the same blocks (active-set
+    // re-solves): the LU of the first matrix and a low-rank change solve each of the
+    // others, as exactly as a new factorisation would.
+    let (len, ties) = (200, 20);
+    let first = tied_chains(len, ties, &[]);
+    let t = transpose_positions(&first);
+    let in_gamma = interface_of(&first, 2 * len, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default()).unwrap();
+    let err = solve_error(&mut s, &first);
+    assert!(err < 1e-12, "first factorisation: max error {err}");
+    assert!(s.update.is_none());
+    for open in [vec![3], vec![3, 11], vec![11], vec![]] {
+        let a = tied_chains(len, ties, &open);
+        let err = solve_error(&mut s, &a);
+        assert!(err < 1e-11, "open {open:?}: max error {err}");
+        assert_eq!(
+            s.update.is_some(),
+            !open.is_empty(),
+            "open {open:?}: the first LU serves with an update"
+        );
+    }
+    // too many rows changed: a new LU
+    let many: Vec<usize> = (0..ties).step_by(2).collect();
+    let a = tied_chains(len, ties, &many);
+    let err = solve_error(&mut s, &a);
+    assert!(err < 1e-12, "many open: max error {err}");
+    assert!(s.update.is_none(), "many open: a new LU");
 }
