@@ -116,7 +116,13 @@ impl Update {
         let mut rows: Vec<usize> = changes.iter().map(|c| c.0).collect();
         rows.sort_unstable();
         rows.dedup();
-        if rows.len() * MAX_ROWS_FRACTION > t.kept.len() {
+        // (Z's columns are kept for every row seen since the LU, also rows changed back:
+        // at most twice as many as one update may use, so they never approach the LU's
+        // own k² values)
+        let unseen = rows.iter().filter(|&&r| z.of[r] == NONE).count();
+        if rows.len() * MAX_ROWS_FRACTION > t.kept.len()
+            || (z.columns.len() + unseen) * MAX_ROWS_FRACTION > 2 * t.kept.len()
+        {
             return None;
         }
         z.extend(&rows, t);
