@@ -15,6 +15,10 @@
 //!   z = L⁻¹ [b_I; 0]  ⇒  A_ΓI A_II⁻¹ b_I = −L_ΓΓ z_Γ
 //!   T x_Γ = b_Γ + Σ_b L_ΓΓ z_Γ,   then [x_I; x_Γ] = L⁻ᵀ [D_I⁻¹ z_I; L_ΓΓᵀ x_Γ]
 //! (one forward and one backward pass per block, the cost of one solve).
+//!
+//! Files: `block.rs` (one body's block and its Schur complement), `dense_lu.rs` (the
+//! interface matrix's LU), `update.rs` (an active-set re-solve as a low-rank change of the
+//! last LU, where T changes in a few rows only).
 
 mod block;
 mod dense_lu;
