@@ -51,12 +51,8 @@ pub struct InterfaceSolver {
     blocks: Vec<Block>,
     /// Entries of A inside Γ × Γ: (position in A, interface row, interface column).
     gamma_entries: Vec<(usize, usize, usize)>,
-    /// LU of the interface matrix restricted to `kept` (`at[i]`: position of unknown i
-    /// there, NONE for a decoupled one, solved alone by its `diagonal`).
-    lu: DenseLu,
-    kept: Vec<usize>,
-    at: Vec<usize>,
-    diagonal: Vec<f64>,
+    /// The interface matrix's LU of its coupled unknowns (see `update::Factorised`).
+    base: Factorised,
     /// The values of A's interface entries the LU is of (empty: none usable), the
     /// columns of Z computed since, and the change to apply after it (see `update.rs`).
     factorised: Vec<f64>,
@@ -212,7 +208,6 @@ impl InterfaceSolver {
         let n = a.n;
         let Partition { gamma, parts } = partition(a, &in_gamma);
         // the blocks' orderings and analyses, in parallel
-        let lu = storage.interface;
         let mut factors = storage.factors;
         factors.resize_with(parts.len(), Vec::new);
         let blocks = parts
@@ -228,10 +223,10 @@ impl InterfaceSolver {
             gamma,
             blocks,
             gamma_entries,
-            lu,
-            kept: vec![],
-            at: vec![],
-            diagonal: vec![],
+            base: Factorised {
+                lu: storage.interface,
+                ..Default::default()
+            },
             factorised: vec![],
             z: ZColumns::default(),
             update: None,
@@ -281,7 +276,7 @@ impl InterfaceSolver {
                 .into_iter()
                 .map(|b| b.ldlt.into_storage())
                 .collect(),
-            interface: self.lu,
+            interface: self.base.lu,
         }
     }
 
@@ -333,17 +328,18 @@ impl InterfaceSolver {
                 "the system matrix is singular: non-finite interface matrix",
             ));
         }
-        self.kept.clear();
+        let base = &mut self.base;
+        base.kept.clear();
         let mut at = vec![NONE; k];
         for i in 0..k {
             if coupled[i] || diagonal[i] == 0.0 {
-                at[i] = self.kept.len();
-                self.kept.push(i);
+                at[i] = base.kept.len();
+                base.kept.push(i);
             }
         }
         // The interface matrix of the kept unknowns, in the storage of the last LU (no
         // fresh pages to fault in at every Newton iteration).
-        let mut t = self.lu.take_storage(self.kept.len(), k);
+        let mut t = base.lu.take_storage(base.kept.len(), k);
         for &(p, i, j) in &self.gamma_entries {
             if at[i] != NONE && at[j] != NONE {
                 t[(at[i], at[j])] += a.values[p];
@@ -363,9 +359,9 @@ impl InterfaceSolver {
                 }
             }
         }
-        self.lu.factor(t);
-        self.at = at;
-        self.diagonal = diagonal;
+        base.lu.factor(t);
+        base.at = at;
+        base.diagonal = diagonal;
         self.factorised = self
             .gamma_entries
             .iter()
@@ -392,16 +388,10 @@ impl InterfaceSolver {
                 changes.push((i, j, v - old));
             }
         }
-        let t = Factorised {
-            lu: &self.lu,
-            kept: &self.kept,
-            at: &self.at,
-            diagonal: &self.diagonal,
-        };
         self.update = if changes.is_empty() {
             None
         } else {
-            match Update::new(changes, &t, &mut self.z) {
+            match Update::new(changes, &self.base, &mut self.z) {
                 Some(u) => Some(u),
                 None => return false,
             }
@@ -457,13 +447,7 @@ impl InterfaceSolver {
                 xg[gi] += si;
             }
         }
-        let t = Factorised {
-            lu: &self.lu,
-            kept: &self.kept,
-            at: &self.at,
-            diagonal: &self.diagonal,
-        };
-        t.solve(&mut xg);
+        self.base.solve(&mut xg);
         if let Some(u) = &self.update {
             u.apply(&mut xg, &self.z);
         }

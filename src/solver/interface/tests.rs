@@ -56,7 +56,7 @@ fn interface_solve_is_exact_on_a_nonsymmetric_saddle_point_system() {
     );
     s.factor(&a).unwrap();
     assert_eq!(
-        s.at.iter().filter(|&&p| p == NONE).count(),
+        s.base.at.iter().filter(|&&p| p == NONE).count(),
         1,
         "the open point's multiplier is solved alone"
     );
@@ -148,8 +148,8 @@ fn the_interface_matrix_follows_the_coupled_unknowns() {
     let mut s = InterfaceSolver::new(&a, in_gamma, Storage::default()).unwrap();
     for (matrix, decoupled) in [(&open, 2), (&a, 1), (&open, 2)] {
         let err = solve_error(&mut s, matrix);
-        assert_eq!(s.at.iter().filter(|&&p| p == NONE).count(), decoupled);
-        assert_eq!(s.kept.len() + decoupled, s.gamma.len());
+        assert_eq!(s.base.at.iter().filter(|&&p| p == NONE).count(), decoupled);
+        assert_eq!(s.base.kept.len() + decoupled, s.gamma.len());
         assert!(err < 1e-12, "{decoupled} decoupled: max error {err}");
     }
 }

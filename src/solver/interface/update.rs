@@ -20,16 +20,18 @@ pub(super) const MAX_ROWS_FRACTION: usize = 6;
 /// loses about as many digits as C is near singular).
 const MIN_PIVOT_RATIO: f64 = 1e-8;
 
-/// What the last LU solves: the coupled unknowns `kept` (position `at[i]` among them, NONE
-/// for a decoupled one) by `lu`, each decoupled unknown alone by its diagonal.
-pub(super) struct Factorised<'a> {
-    pub lu: &'a DenseLu,
-    pub kept: &'a [usize],
-    pub at: &'a [usize],
-    pub diagonal: &'a [f64],
+/// The interface matrix as last factorised: the coupled unknowns `kept` (position
+/// `at[i]` among them, NONE for a decoupled one) by `lu`, each decoupled unknown alone by
+/// its `diagonal`.
+#[derive(Default)]
+pub(super) struct Factorised {
+    pub lu: DenseLu,
+    pub kept: Vec<usize>,
+    pub at: Vec<usize>,
+    pub diagonal: Vec<f64>,
 }
 
-impl Factorised<'_> {
+impl Factorised {
     /// x ← T⁻¹ x (x over the interface).
     pub(super) fn solve(&self, x: &mut [f64]) {
         let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| x[self.kept[i]]);
