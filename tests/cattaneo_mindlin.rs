@@ -72,7 +72,7 @@ fn mesh(kind: CellKind, nx_upper: usize, nx_lower: usize, ny: usize) -> Mesh {
     bodies(&[("Upper", &upper.finish()), ("Lower", &lower.finish())])
 }
 
-fn case_text(formulation: &str, slave_upper: bool) -> String {
+fn case_text(formulation: &str, slave_upper: bool, rho_f: Option<f64>) -> String {
     let head = case_head(&[("UpperBody", E, NU), ("LowerBody", E, NU)]);
     let (slave, master) = if slave_upper {
         ("UpperContact", "LowerContact")
@@ -109,22 +109,28 @@ slave = "{slave}"
 master = "{master}"
 formulation = "{formulation}"
 friction = {MU}
+{}
 [solver]
 steps = 8
 [output]
 vtu = false
-"#
+"#,
+        rho_f.map(|r| format!("rho_f = {r}")).unwrap_or_default()
     )
 }
 
 fn check(kind: CellKind, formulation: &str, slave_upper: bool) {
-    let what = format!("{formulation}, {kind:?}, slave upper {slave_upper}");
+    check_with(kind, formulation, slave_upper, None)
+}
+
+fn check_with(kind: CellKind, formulation: &str, slave_upper: bool, rho_f: Option<f64>) {
+    let what = format!("{formulation}, {kind:?}, slave upper {slave_upper}, rho_f {rho_f:?}");
     // quadratic cells: two thirds as many across (node spacing 2/3 of the linear mesh's)
     let mesh = match kind {
         CellKind::Quad8 => mesh(kind, 100, 86, 20),
         _ => mesh(kind, 150, 130, 30),
     };
-    let case: CaseFile = toml::from_str(&case_text(formulation, slave_upper)).unwrap();
+    let case: CaseFile = toml::from_str(&case_text(formulation, slave_upper, rho_f)).unwrap();
     let out = run(&case, &mesh, false).unwrap_or_else(|e| panic!("{what}: {e}"));
     // P, Q per unit length from the reactions where the upper body's top is moved
     let (rx, ry) = group_sum(&mesh, "UpperFar", &out.reactions);
@@ -236,4 +242,16 @@ fn node_to_segment_linear_cells() {
 fn node_to_segment_quadratic_cells() {
     check(CellKind::Quad8, "node-to-segment", true);
     check(CellKind::Quad8, "node-to-segment", false);
+}
+
+/// The friction augmentation ρ_f decides the path, not the solution. With ρ_f = 1e7, near
+/// 10⁴ times the default (60 over the shortest slave cell: 1000–1500 here), a slipping
+/// point must reverse its slip by less than 2e-7 to stick, and swings between the two slip
+/// directions instead, until its own ρ_f is cut (`friction::count_switch`). Before that
+/// cut, node-to-segment failed here at t = 0.01–0.05 after 8 step cuts (and took 86–124
+/// iterations at ρ_f = 1e5).
+#[test]
+fn node_to_segment_with_a_far_too_large_friction_augmentation() {
+    check_with(CellKind::Quad4, "node-to-segment", false, Some(1e7));
+    check_with(CellKind::Quad8, "node-to-segment", true, Some(1e7));
 }

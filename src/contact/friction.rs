@@ -32,6 +32,29 @@ pub fn traction(mu: f64, lambda: f64, t: f64, state: State) -> f64 {
     }
 }
 
+/// A contact point (or node) that switched this many times in one load step has its
+/// trial's augmentation cut by `SMALLER_TRIAL`, down to `SMALLEST_TRIAL` of the chosen one.
+/// Semi-smooth Newton cycles where the augmentation is large for the local tangential
+/// compliance: in the semi-multiplier form a slipping point must reverse its slip by less
+/// than 2/ρ_f to stick, and otherwise slips the other way. What counts as a switch is the
+/// formulation's (point-to-segment: a reversal of the slip direction; mortar: any change
+/// of branch). The converged solution does not depend on the augmentation (stick: Δw = 0;
+/// slip: Λ = sign Δw), only the path.
+pub const SWITCHES_BEFORE_SMALLER_TRIAL: u32 = 3;
+pub const SMALLER_TRIAL: f64 = 0.1;
+pub const SMALLEST_TRIAL: f64 = 1e-4;
+
+/// Counts one branch change of a point with `switches` changes so far in this step and
+/// the trial factor `scale` (1 at first); cuts the factor after
+/// `SWITCHES_BEFORE_SMALLER_TRIAL` changes and starts counting again.
+pub fn count_switch(switches: &mut u32, scale: &mut f64) {
+    *switches += 1;
+    if *switches >= SWITCHES_BEFORE_SMALLER_TRIAL {
+        *scale = (SMALLER_TRIAL * *scale).max(SMALLEST_TRIAL);
+        *switches = 0;
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -63,6 +86,21 @@ mod tests {
                 assert!(q * s < 0.0);
             }
         }
+    }
+
+    #[test]
+    fn a_point_that_keeps_switching_gets_a_smaller_trial_down_to_the_floor() {
+        let (mut switches, mut scale) = (0, 1.0);
+        for _ in 0..SWITCHES_BEFORE_SMALLER_TRIAL - 1 {
+            count_switch(&mut switches, &mut scale);
+        }
+        assert_eq!(scale, 1.0);
+        count_switch(&mut switches, &mut scale);
+        assert_eq!((switches, scale), (0, SMALLER_TRIAL));
+        for _ in 0..100 {
+            count_switch(&mut switches, &mut scale);
+        }
+        assert_eq!(scale, SMALLEST_TRIAL);
     }
 
     #[test]

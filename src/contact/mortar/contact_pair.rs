@@ -284,11 +284,10 @@ impl ContactPair for Mortar {
             for j in 0..nm {
                 let law = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 if law != self.law[j] {
-                    self.switches[j] += 1;
-                    if self.switches[j] >= 3 {
-                        self.trial_scale[j] = (0.1 * self.trial_scale[j]).max(1e-4);
-                        self.switches[j] = 0;
-                    }
+                    super::super::friction::count_switch(
+                        &mut self.switches[j],
+                        &mut self.trial_scale[j],
+                    );
                     changes += 1;
                     self.law[j] = law;
                     changed.push(self.mult_nodes[j]);

@@ -206,6 +206,9 @@ impl PointToSegment {
             reported_from_neighbours,
             mult_coords,
             q_start: vec![0.0; n_mult],
+            law: vec![],
+            switches: vec![],
+            trial_scale: vec![],
         };
         // (every point inactive until `initialise`)
         pair.save_start();

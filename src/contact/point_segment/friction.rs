@@ -1,9 +1,11 @@
 //! Coulomb friction at one contact point: the semi-multiplier form (stick or slip rows),
-//! the tangential penalty form, and their geometric terms (τ turns, ξ̄ slides).
+//! the tangential penalty form, and their geometric terms (τ turns, ξ̄ slides); each
+//! point's branch at the status updates, whose slip-direction reversals cut its ρ_f.
 
 use super::super::friction;
-use super::{FrictionPoint, PointToSegment};
+use super::{Eval, FrictionPoint, PointToSegment};
 use crate::assembly::coupled::Triplets;
+use crate::mesh::Mesh;
 
 impl PointToSegment {
     /// The friction terms' dependence on the geometry: the slip Δw = τ·(Σ N_s Δu_s −
@@ -82,6 +84,71 @@ impl PointToSegment {
         }
     }
 
+    /// The slip Δw since the step start along the master tangent, Tᵀ (u − u_start) with T =
+    /// (N_s τ, −N_m τ), and the semi-multiplier Λ = Σ N_s Λ_s at a point of geometry `e`.
+    pub(super) fn slip_and_semi_multiplier(
+        &self,
+        e: &Eval,
+        snodes: &[usize],
+        mnodes: &[usize],
+        u: &[f64],
+        lam: &[f64],
+    ) -> (f64, f64) {
+        let du = |n: usize, c: usize| u[2 * n + c] - self.u_start[2 * n + c];
+        let mut dw = 0.0;
+        for (a, &n) in snodes.iter().enumerate() {
+            for c in 0..2 {
+                dw += e.ns[a] * e.tau[c] * du(n, c);
+            }
+        }
+        for (b, &n) in mnodes.iter().enumerate() {
+            for c in 0..2 {
+                dw -= e.nm[b] * e.tau[c] * du(n, c);
+            }
+        }
+        let nm = self.mult_nodes.len();
+        let big_l = snodes
+            .iter()
+            .enumerate()
+            .map(|(a, n)| e.ns[a] * lam[nm + self.mult_of[n]])
+            .sum();
+        (dw, big_l)
+    }
+
+    /// Point i's Coulomb branch at (u, λ) as `friction_point` takes it (None: no friction
+    /// there), given its geometry, its λ and the floor below which |λ| carries none; a
+    /// point whose branch keeps changing in this step gets a smaller trial factor.
+    pub(super) fn count_friction_switch(
+        &mut self,
+        mesh: &Mesh,
+        u: &[f64],
+        lam: &[f64],
+        i: usize,
+        (e, lp, lambda_floor): (&Eval, f64, f64),
+    ) {
+        let n = self.points.len();
+        self.law.resize(n, None);
+        self.switches.resize(n, 0);
+        self.trial_scale.resize(n, 1.0);
+        let p = &self.points[i];
+        let law = if !p.active || p.excluded || lp >= -lambda_floor {
+            None
+        } else {
+            let snodes = mesh.cell_nodes(self.slave.cells[p.cell]);
+            let mnodes = mesh.cell_nodes(self.master.cells[p.master]);
+            let (dw, big_l) = self.slip_and_semi_multiplier(e, snodes, mnodes, u, lam);
+            let rho_f = self.opts.rho_f * self.trial_scale[i];
+            Some(friction::state(big_l, dw, rho_f).1)
+        };
+        if let (Some(friction::State::Slip(a)), Some(friction::State::Slip(b))) = (self.law[i], law)
+        {
+            if a != b {
+                friction::count_switch(&mut self.switches[i], &mut self.trial_scale[i]);
+            }
+        }
+        self.law[i] = law;
+    }
+
     /// Coulomb friction at one contact point (contact.md §1.8): with the semi-multiplier
     /// Λ (|Λ| ≤ 1) and the slip Δw since the start of the step along the master tangent,
     /// t = Λ + ρ_f Δw; stick if |t| ≤ 1 (then Δw = 0 weakly), slip otherwise (Λ = ±1);
@@ -99,23 +166,20 @@ impl PointToSegment {
     ) {
         let nm = self.mult_nodes.len();
         let e = fp.e;
-        let (w, mu, lp) = (fp.w, fp.mu, fp.lp);
-        let rho_f = self.opts.rho_f;
+        let (w, mu, lp, rho_f) = (fp.w, fp.mu, fp.lp, fp.rho_f);
         // T over dofs: slave N_s τ, master −N_m τ; Δw = Tᵀ (u − u_start)
         let mut tv: Vec<(usize, f64)> = vec![];
-        let mut dw = 0.0;
         for (a, &n) in fp.snodes.iter().enumerate() {
             for c in 0..2 {
                 tv.push((2 * n + c, e.ns[a] * e.tau[c]));
-                dw += e.ns[a] * e.tau[c] * (u[2 * n + c] - self.u_start[2 * n + c]);
             }
         }
         for (b, &n) in fp.mnodes.iter().enumerate() {
             for c in 0..2 {
                 tv.push((2 * n + c, -e.nm[b] * e.tau[c]));
-                dw -= e.nm[b] * e.tau[c] * (u[2 * n + c] - self.u_start[2 * n + c]);
             }
         }
+        let (dw, big_l) = self.slip_and_semi_multiplier(e, fp.snodes, fp.mnodes, u, lam);
         let excluded = |n: usize| self.opts.friction_excluded.contains(&n);
         // friction multipliers (index, N_s) of this cell; excluded nodes keep their unit row
         let fm: Vec<(usize, f64)> = fp
@@ -131,12 +195,6 @@ impl PointToSegment {
             .enumerate()
             .map(|(a, n)| (self.mult_of[n], e.ns[a]))
             .collect();
-        let big_l: f64 = fp
-            .snodes
-            .iter()
-            .enumerate()
-            .map(|(a, n)| e.ns[a] * lam[nm + self.mult_of[n]])
-            .sum();
         if let (true, Some(k_t)) = (fp.chi, self.opts.tangential_penalty) {
             let pen = Penalty {
                 k_t,

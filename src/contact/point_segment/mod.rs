@@ -189,6 +189,12 @@ pub struct PointToSegment {
     /// Per multiplier, the tangential force at the start of the load step (the spring
     /// force a tangential penalty starts the step from).
     q_start: Vec<f64>,
+    /// Per point, with friction: its Coulomb branch at the last status update (None: no
+    /// friction there), how often the branch changed in this step, and the factor on ρ_f
+    /// of its trial (cut where it keeps switching: `friction::count_switch`).
+    law: Vec<Option<super::friction::State>>,
+    switches: Vec<u32>,
+    trial_scale: Vec<f64>,
 }
 
 /// Coefficients of a linear form over dofs: (dof, value).
@@ -198,6 +204,8 @@ type OwnedCoefs = Vec<(usize, f64)>;
 /// What the friction term of one point needs from the normal one.
 struct FrictionPoint<'a> {
     mu: f64,
+    /// the point's ρ_f (the pair's, times its trial factor)
+    rho_f: f64,
     /// |λ| below which a point carries no friction (1e-8 of the largest |λ|)
     lambda_floor: f64,
     w: f64,

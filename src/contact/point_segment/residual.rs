@@ -194,6 +194,7 @@ impl PointToSegment {
                 let fp = FrictionPoint {
                     lambda_floor,
                     mu,
+                    rho_f: self.opts.rho_f * self.trial_scale.get(i).copied().unwrap_or(1.0),
                     w,
                     lp,
                     chi,

@@ -70,6 +70,9 @@ impl PointToSegment {
         self.pair_all(mesh, u);
         let mut changes = 0;
         self.changed.clear();
+        let nmult = self.mult_nodes.len();
+        let lambda_floor = 1e-8 * lam[..nmult].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let count_switches = self.opts.friction.is_some() && self.opts.tangential_penalty.is_none();
         for i in 0..self.points.len() {
             let e = self.eval(mesh, u, i);
             let lp = self.point_lambda(mesh, i, &e.ns, lam);
@@ -94,6 +97,9 @@ impl PointToSegment {
                 self.changed
                     .push(mesh.cell_nodes(self.slave.cells[cell])[a]);
             }
+            if count_switches {
+                self.count_friction_switch(mesh, u, lam, i, (&e, lp, lambda_floor));
+            }
         }
         changes
     }
@@ -101,6 +107,7 @@ impl PointToSegment {
     pub fn commit(&mut self, u: &[f64], lam: &[f64]) {
         self.save_start();
         self.u_start.copy_from_slice(u);
+        self.switches.fill(0);
         if self.opts.friction.is_some() && self.opts.tangential_penalty.is_some() {
             // (the tangential multipliers are the forces)
             let nm = self.mult_nodes.len();
