@@ -247,7 +247,7 @@ fn node_to_segment_quadratic_cells() {
 /// The friction augmentation ρ_f decides the path, not the solution. With ρ_f = 1e7, near
 /// 10⁴ times the default (60 over the shortest slave cell: 1000–1500 here), a slipping
 /// point must reverse its slip by less than 2e-7 to stick, and swings between the two slip
-/// directions instead, until its own ρ_f is cut (`friction::count_switch`). Before that
+/// directions instead, until its own ρ_f is cut (`friction::count_reversal`). Before that
 /// cut, node-to-segment failed here at t = 0.01–0.05 after 8 step cuts (and took 86–124
 /// iterations at ρ_f = 1e5).
 #[test]

@@ -33,13 +33,13 @@ pub fn traction(mu: f64, lambda: f64, t: f64, state: State) -> f64 {
 }
 
 /// A contact point (or node) that switched this many times in one load step has its
-/// trial's augmentation cut by `SMALLER_TRIAL`, down to `SMALLEST_TRIAL` of the chosen one.
-/// Semi-smooth Newton cycles where the augmentation is large for the local tangential
-/// compliance: in the semi-multiplier form a slipping point must reverse its slip by less
-/// than 2/ρ_f to stick, and otherwise slips the other way. What counts as a switch is the
-/// formulation's (point-to-segment: a reversal of the slip direction; mortar: any change
-/// of branch). The converged solution does not depend on the augmentation (stick: Δw = 0;
-/// slip: Λ = sign Δw), only the path.
+/// trial's augmentation cut, by `SMALLER_TRIAL` at most (mortar: by that, down to
+/// `SMALLEST_TRIAL` of the chosen one). Semi-smooth Newton cycles where the augmentation is
+/// large for the local tangential compliance: in the semi-multiplier form a slipping point
+/// must reverse its slip by less than 2/ρ_f to stick, and otherwise slips the other way.
+/// What counts as a switch is the formulation's (point-to-segment: a reversal of the slip
+/// direction; mortar: any change of branch). The converged solution does not depend on the
+/// augmentation (stick: Δw = 0; slip: Λ = sign Δw), only the path.
 pub const SWITCHES_BEFORE_SMALLER_TRIAL: u32 = 3;
 pub const SMALLER_TRIAL: f64 = 0.1;
 pub const SMALLEST_TRIAL: f64 = 1e-4;
@@ -51,6 +51,22 @@ pub fn count_switch(switches: &mut u32, scale: &mut f64) {
     *switches += 1;
     if *switches >= SWITCHES_BEFORE_SMALLER_TRIAL {
         *scale = (SMALLER_TRIAL * *scale).max(SMALLEST_TRIAL);
+        *switches = 0;
+    }
+}
+
+/// Counts one reversal of a point's slip direction, its slip now Δw = `slip` under the
+/// augmentation `rho_f` × `scale`. After `SWITCHES_BEFORE_SMALLER_TRIAL` reversals the
+/// factor becomes the one under which this slip would have stuck, ρ_f |Δw| ≤ 1 (the slip
+/// scale of the problem, whatever its units and cells), cut by `SMALLER_TRIAL` at most: a
+/// reversal early in a large step, of a slip far from the solution's, then cuts no more
+/// than that (a floor at a fixed fraction instead let ρ_f = 100 go to 0.01 on SSNP154 D
+/// in one step at 0.16 mm, which then failed).
+pub fn count_reversal(switches: &mut u32, scale: &mut f64, rho_f: f64, slip: f64) {
+    *switches += 1;
+    if *switches >= SWITCHES_BEFORE_SMALLER_TRIAL {
+        let stuck = 1.0 / (rho_f * slip.abs());
+        *scale = stuck.min(*scale).max(SMALLER_TRIAL * *scale);
         *switches = 0;
     }
 }
@@ -101,6 +117,31 @@ mod tests {
             count_switch(&mut switches, &mut scale);
         }
         assert_eq!(scale, SMALLEST_TRIAL);
+    }
+
+    #[test]
+    fn a_reversing_point_gets_the_trial_under_which_its_slip_sticks() {
+        let (mut switches, mut scale) = (0, 1.0);
+        let rho_f = 1e4;
+        // two reversals: nothing yet
+        count_reversal(&mut switches, &mut scale, rho_f, 2e-4);
+        count_reversal(&mut switches, &mut scale, rho_f, -2e-4);
+        assert_eq!(scale, 1.0);
+        // the third: ρ_f |Δw| = 1 (2e-4 → ρ_f 5000)
+        count_reversal(&mut switches, &mut scale, rho_f, 2e-4);
+        assert_eq!(switches, 0);
+        assert!((rho_f * scale - 5000.0).abs() < 1e-9);
+        let (t, law) = state(1.0, -2e-4, rho_f * scale);
+        assert_eq!((t, law), (0.0, State::Stick));
+        // a slip already inside the window leaves it; a large one cuts 10× at most
+        for _ in 0..3 {
+            count_reversal(&mut switches, &mut scale, rho_f, 1e-6);
+        }
+        assert!((rho_f * scale - 5000.0).abs() < 1e-9);
+        for _ in 0..3 {
+            count_reversal(&mut switches, &mut scale, rho_f, 1.0);
+        }
+        assert!((rho_f * scale - 500.0).abs() < 1e-9);
     }
 
     #[test]

@@ -117,7 +117,8 @@ impl PointToSegment {
 
     /// Point i's Coulomb branch at (u, λ) as `friction_point` takes it (None: no friction
     /// there), given its geometry, its λ and the floor below which |λ| carries none; a
-    /// point whose branch keeps changing in this step gets a smaller trial factor.
+    /// point whose slip keeps reversing its direction in this step gets a smaller ρ_f
+    /// (`friction::count_reversal`).
     pub(super) fn count_friction_switch(
         &mut self,
         mesh: &Mesh,
@@ -131,19 +132,22 @@ impl PointToSegment {
         self.switches.resize(n, 0);
         self.trial_scale.resize(n, 1.0);
         let p = &self.points[i];
+        let mut dw = 0.0;
         let law = if !p.active || p.excluded || lp >= -lambda_floor {
             None
         } else {
             let snodes = mesh.cell_nodes(self.slave.cells[p.cell]);
             let mnodes = mesh.cell_nodes(self.master.cells[p.master]);
-            let (dw, big_l) = self.slip_and_semi_multiplier(e, snodes, mnodes, u, lam);
+            let big_l;
+            (dw, big_l) = self.slip_and_semi_multiplier(e, snodes, mnodes, u, lam);
             let rho_f = self.opts.rho_f * self.trial_scale[i];
             Some(friction::state(big_l, dw, rho_f).1)
         };
         if let (Some(friction::State::Slip(a)), Some(friction::State::Slip(b))) = (self.law[i], law)
         {
             if a != b {
-                friction::count_switch(&mut self.switches[i], &mut self.trial_scale[i]);
+                let (switches, scale) = (&mut self.switches[i], &mut self.trial_scale[i]);
+                friction::count_reversal(switches, scale, self.opts.rho_f, dw);
             }
         }
         self.law[i] = law;

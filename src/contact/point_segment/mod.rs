@@ -190,8 +190,8 @@ pub struct PointToSegment {
     /// force a tangential penalty starts the step from).
     q_start: Vec<f64>,
     /// Per point, with friction: its Coulomb branch at the last status update (None: no
-    /// friction there), how often the branch changed in this step, and the factor on ρ_f
-    /// of its trial (cut where it keeps switching: `friction::count_switch`).
+    /// friction there), how often its slip reversed its direction in this step, and the
+    /// factor on ρ_f of its trial (cut where it keeps reversing: `friction::count_reversal`).
     law: Vec<Option<super::friction::State>>,
     switches: Vec<u32>,
     trial_scale: Vec<f64>,
