@@ -186,6 +186,7 @@ impl PointToSegment {
             opts.friction_excluded.extend(excluded);
         }
         let n_mult = mult_nodes.len();
+        let n_points = points.len();
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         let mut pair = PointToSegment {
             slave,
@@ -206,9 +207,9 @@ impl PointToSegment {
             reported_from_neighbours,
             mult_coords,
             q_start: vec![0.0; n_mult],
-            law: vec![],
-            switches: vec![],
-            trial_scale: vec![],
+            law: vec![None; n_points],
+            switches: vec![0; n_points],
+            trial_scale: vec![1.0; n_points],
         };
         // (every point inactive until `initialise`)
         pair.save_start();

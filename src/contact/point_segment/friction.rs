@@ -84,6 +84,12 @@ impl PointToSegment {
         }
     }
 
+    /// |λ| below which a point carries no friction: 1e-8 of the largest normal multiplier.
+    pub(super) fn friction_floor(&self, lam: &[f64]) -> f64 {
+        let nm = self.mult_nodes.len();
+        1e-8 * lam[..nm].iter().fold(0.0f64, |m, v| m.max(v.abs()))
+    }
+
     /// The slip Δw since the step start along the master tangent, Tᵀ (u − u_start) with T =
     /// (N_s τ, −N_m τ), and the semi-multiplier Λ = Σ N_s Λ_s at a point of geometry `e`.
     pub(super) fn slip_and_semi_multiplier(
@@ -127,10 +133,6 @@ impl PointToSegment {
         i: usize,
         (e, lp, lambda_floor): (&Eval, f64, f64),
     ) {
-        let n = self.points.len();
-        self.law.resize(n, None);
-        self.switches.resize(n, 0);
-        self.trial_scale.resize(n, 1.0);
         let p = &self.points[i];
         let mut dw = 0.0;
         let law = if !p.active || p.excluded || lp >= -lambda_floor {

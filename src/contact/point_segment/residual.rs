@@ -23,8 +23,7 @@ impl PointToSegment {
     ) {
         let ndof = 2 * mesh.num_nodes();
         let rho = self.opts.rho;
-        let nmult = self.mult_nodes.len();
-        let lambda_floor = 1e-8 * lam[..nmult].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let lambda_floor = self.friction_floor(lam);
         for i in 0..self.points.len() {
             let p = &self.points[i];
             let e = self.eval(mesh, u, i);
@@ -194,7 +193,7 @@ impl PointToSegment {
                 let fp = FrictionPoint {
                     lambda_floor,
                     mu,
-                    rho_f: self.opts.rho_f * self.trial_scale.get(i).copied().unwrap_or(1.0),
+                    rho_f: self.opts.rho_f * self.trial_scale[i],
                     w,
                     lp,
                     chi,

@@ -70,8 +70,7 @@ impl PointToSegment {
         self.pair_all(mesh, u);
         let mut changes = 0;
         self.changed.clear();
-        let nmult = self.mult_nodes.len();
-        let lambda_floor = 1e-8 * lam[..nmult].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        let lambda_floor = self.friction_floor(lam);
         let count_switches = self.opts.friction.is_some() && self.opts.tangential_penalty.is_none();
         for i in 0..self.points.len() {
             let e = self.eval(mesh, u, i);

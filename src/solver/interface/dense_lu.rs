@@ -6,10 +6,11 @@ use faer::perm::PermRef;
 use faer::{Mat, Par};
 
 /// Dense LU with partial pivoting, in place in the interface matrix. The factorisation
-/// runs on the pool's threads (the blocks are done by then): faer splits the updates of the trailing matrix, not the sums of any
-/// entry, so the factors are those of the sequential LU bit for bit (tested), on any
-/// machine. On the 2-core machine: 1.3× faster at k = 2000, 1.5× at 3000, 1.8× at 5000;
-/// the same below 1000 (sequential there). Solves are sequential (one right-hand side).
+/// runs on the pool's threads (the blocks are done by then): faer splits the updates of
+/// the trailing matrix, not the sums of any entry, so the factors are those of the
+/// sequential LU bit for bit (tested), on any machine. On the 2-core machine: 1.3× faster
+/// at k = 2000, 1.5× at 3000, 1.8× at 5000; the same below 1000 (sequential there).
+/// Solves are sequential (one right-hand side).
 pub(super) struct DenseLu {
     lu: Mat<f64>,
     /// The number of rows and columns `lu` has room for (it can hold a smaller matrix).
