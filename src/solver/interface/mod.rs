@@ -55,7 +55,10 @@ pub struct InterfaceSolver {
     base: Factorised,
     /// The values of A's interface entries the LU is of (empty: none usable), the
     /// columns of Z computed since, and the change to apply after it (see `update.rs`).
+    /// `vanished`: entries the LU is of that a rebind took out of the pattern (interface
+    /// row, column, value).
     factorised: Vec<f64>,
+    vanished: Vec<(usize, usize, f64)>,
     z: ZColumns,
     update: Option<Update>,
 }
@@ -228,6 +231,7 @@ impl InterfaceSolver {
                 ..Default::default()
             },
             factorised: vec![],
+            vanished: vec![],
             z: ZColumns::default(),
             update: None,
         })
@@ -261,11 +265,49 @@ impl InterfaceSolver {
         if rebound.contains(&false) {
             return false;
         }
-        self.gamma_entries = gamma_entries(a, &self.gamma);
-        // (the LU's entries are no longer labelled: the next factorisation makes a new one)
-        self.factorised.clear();
+        let entries = gamma_entries(a, &self.gamma);
+        let old = std::mem::replace(&mut self.gamma_entries, entries);
+        self.relabel_factorised(&old);
         self.update = None;
         true
+    }
+
+    /// After a rebind (the same interface, the entries of A in Γ × Γ at other positions):
+    /// the values the LU is of, labelled by the new entries, and those of entries out of
+    /// the pattern kept aside as changes to undo (an entry back in the pattern takes its
+    /// value from there; one never seen was zero). An active-set re-solve whose contact
+    /// pattern changed is then still a low-rank change of the LU at hand, not a new LU.
+    /// `old` and the new entries are sorted by (interface column, row).
+    fn relabel_factorised(&mut self, old: &[(usize, usize, usize)]) {
+        if self.factorised.len() != old.len() {
+            return;
+        }
+        // (ordered: the update's sums come out the same in every run)
+        let mut aside: std::collections::BTreeMap<(usize, usize), f64> =
+            self.vanished.iter().map(|&(i, j, v)| ((j, i), v)).collect();
+        let mut values = Vec::with_capacity(self.gamma_entries.len());
+        let mut o = 0;
+        for &(_, i, j) in &self.gamma_entries {
+            while o < old.len() && (old[o].2, old[o].1) < (j, i) {
+                aside.insert((old[o].2, old[o].1), self.factorised[o]);
+                o += 1;
+            }
+            if o < old.len() && (old[o].2, old[o].1) == (j, i) {
+                values.push(self.factorised[o]);
+                o += 1;
+            } else {
+                values.push(aside.remove(&(j, i)).unwrap_or(0.0));
+            }
+        }
+        for (e, &v) in old[o..].iter().zip(&self.factorised[o..]) {
+            aside.insert((e.2, e.1), v);
+        }
+        self.vanished = aside
+            .into_iter()
+            .filter(|&(_, v)| v != 0.0)
+            .map(|((j, i), v)| (i, j, v))
+            .collect();
+        self.factorised = values;
     }
 
     /// Its large buffers, for the next analysis.
@@ -294,6 +336,7 @@ impl InterfaceSolver {
             return Ok(());
         }
         self.factorised.clear(); // until this factorisation is made
+        self.vanished.clear();
         self.update = None;
         // Unknowns decoupled from the rest of the interface (the multipliers of open
         // contact points: row and column hold only the diagonal) are solved on their own;
@@ -378,7 +421,8 @@ impl InterfaceSolver {
         if self.factorised.len() != self.gamma_entries.len() {
             return false;
         }
-        let mut changes = vec![];
+        let mut changes: Vec<(usize, usize, f64)> =
+            self.vanished.iter().map(|&(i, j, v)| (i, j, -v)).collect();
         for (&(p, i, j), &old) in self.gamma_entries.iter().zip(&self.factorised) {
             let v = a.values[p];
             if !v.is_finite() {

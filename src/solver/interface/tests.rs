@@ -271,3 +271,80 @@ fn a_re_solve_updates_the_interface_lu_and_stays_exact() {
     assert!(err < 1e-12, "many open: max error {err}");
     assert!(s.update.is_none(), "many open: a new LU");
 }
+
+/// As `tied_chains`, but an open tie's multiplier couplings are out of the pattern (a
+/// contact pattern change between interface unknowns: the tied unknowns stay in the
+/// interface through their friction-like coupling).
+fn tied_chains_sparse(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
+    let mut e: Vec<(usize, usize, f64)> = two_bodies_entries(len)
+        .into_iter()
+        .filter(|&(r, c, _)| r < 2 * len && c < 2 * len)
+        .filter(|&(r, c, _)| r == c || (r < len) == (c < len))
+        .collect();
+    let m = 2 * len;
+    for k in 0..ties {
+        let (a, b) = (len - 1 - k, len + k);
+        if open.contains(&k) {
+            e.push((m + k, m + k, 3.0));
+        } else {
+            e.extend([(m + k, a, 1.0), (a, m + k, 1.0), (m + k, b, -1.0)]);
+            e.extend([(b, m + k, -1.0), (m + k, m + k, 0.0)]);
+        }
+        e.extend([(a, b, 0.3), (b, a, -0.2)]);
+    }
+    SparseMatrix::from_entries(2 * len + ties, &e)
+}
+
+#[test]
+fn a_re_solve_across_a_contact_pattern_change_updates_the_interface_lu() {
+    // Ties open (their couplings leave the pattern) and close again between
+    // factorisations with the same blocks: after each rebind the first LU and a low-rank
+    // change, entries gone from the pattern included, solve as exactly as a new LU.
+    let (len, ties) = (200, 20);
+    let first = tied_chains_sparse(len, ties, &[]);
+    let in_gamma = interface_searched(&first, 2 * len).expect("small interface");
+    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default()).unwrap();
+    assert!(solve_error(&mut s, &first) < 1e-12);
+    for open in [vec![3], vec![3, 11], vec![11], vec![]] {
+        let a = tied_chains_sparse(len, ties, &open);
+        assert_eq!(a.nnz() == first.nnz(), open.is_empty(), "a pattern change");
+        let in_gamma = interface_searched(&a, 2 * len).expect("small interface");
+        assert!(s.rebind(&a, &in_gamma), "open {open:?}: the same blocks");
+        let err = solve_error(&mut s, &a);
+        assert!(err < 1e-11, "open {open:?}: max error {err}");
+        assert_eq!(
+            s.update.is_some(),
+            !open.is_empty(),
+            "open {open:?}: the first LU serves with an update"
+        );
+    }
+}
+
+#[test]
+fn a_change_in_rows_of_unlike_sizes_still_updates_the_interface_lu() {
+    // The multiplier rows of half the ties in other units (a factor 1e9: a constraint
+    // row scaled by a stiffness): C's rows then differ in size as much, which says
+    // nothing of its conditioning; the update serves and stays exact.
+    let (len, ties) = (200, 20);
+    let scaled = |open: &[usize]| {
+        let mut a = tied_chains(len, ties, open);
+        for c in 0..a.n {
+            for p in a.col_ptr[c]..a.col_ptr[c + 1] {
+                let r = a.row_idx[p];
+                if r >= 2 * len && (r - 2 * len) % 2 == 0 {
+                    a.values[p] *= 1e9;
+                }
+            }
+        }
+        a
+    };
+    let first = scaled(&[]);
+    let t = transpose_positions(&first);
+    let in_gamma = interface_of(&first, 2 * len, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default()).unwrap();
+    assert!(solve_error(&mut s, &first) < 1e-12);
+    let a = scaled(&[2, 3]);
+    let err = solve_error(&mut s, &a);
+    assert!(err < 1e-11, "max error {err}");
+    assert!(s.update.is_some(), "the first LU serves with an update");
+}

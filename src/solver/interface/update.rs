@@ -103,6 +103,9 @@ pub(super) struct Update {
     rows: Vec<usize>,
     /// (index in `rows`, interface column, new − factorised value)
     delta: Vec<(usize, usize, f64)>,
+    /// C's equilibration: its LU is of diag(rows_scale) C diag(columns_scale).
+    rows_scale: Vec<f64>,
+    columns_scale: Vec<f64>,
     c: DenseLu,
 }
 
@@ -140,9 +143,43 @@ impl Update {
                 c[(ri, rc)] += d * z.column(row)[j];
             }
         }
+        // C equilibrated (rows, then columns, to a largest entry of one): W's rows and Z's
+        // columns mix the sizes of contact and body terms, and the pivots (and the
+        // near-singularity test on them) should see C's conditioning, not its units (the
+        // solution is the same).
+        let largest = |v: f64, m: f64| m.max(v.abs());
+        let inverse = |m: f64| {
+            if m > 0.0 && m.is_finite() {
+                1.0 / m
+            } else {
+                1.0
+            }
+        };
+        let rows_scale: Vec<f64> = (0..r)
+            .map(|i| inverse((0..r).fold(0.0, |m, j| largest(c[(i, j)], m))))
+            .collect();
+        for j in 0..r {
+            for (i, s) in rows_scale.iter().enumerate() {
+                c[(i, j)] *= s;
+            }
+        }
+        let columns_scale: Vec<f64> = (0..r)
+            .map(|j| inverse((0..r).fold(0.0, |m, i| largest(c[(i, j)], m))))
+            .collect();
+        for (j, s) in columns_scale.iter().enumerate() {
+            for i in 0..r {
+                c[(i, j)] *= s;
+            }
+        }
         let mut lu = DenseLu::default();
         lu.factor(c);
-        (lu.pivot_ratio() >= MIN_PIVOT_RATIO).then_some(Update { rows, delta, c: lu })
+        (lu.pivot_ratio() >= MIN_PIVOT_RATIO).then_some(Update {
+            rows,
+            delta,
+            rows_scale,
+            columns_scale,
+            c: lu,
+        })
     }
 
     /// y ← y − Z C⁻¹ W y: from T⁻¹ b to T'⁻¹ b.
@@ -151,7 +188,13 @@ impl Update {
         for &(ri, j, d) in &self.delta {
             v[(ri, 0)] += d * y[j];
         }
+        for (i, s) in self.rows_scale.iter().enumerate() {
+            v[(i, 0)] *= s;
+        }
         self.c.solve(&mut v);
+        for (i, s) in self.columns_scale.iter().enumerate() {
+            v[(i, 0)] *= s;
+        }
         for (rc, &row) in self.rows.iter().enumerate() {
             let s = v[(rc, 0)];
             for (yi, zi) in y.iter_mut().zip(z.column(row)) {
