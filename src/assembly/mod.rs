@@ -2,7 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `coupled.rs` | solid matrix + contact triplets over extra unknowns, pattern rebuilt on change |
+//! | `coupled.rs` | the solid matrix extended in place by contact triplets over extra unknowns |
 //! | `dofs.rs` | `DofMap`: free, imposed and linked dofs (elimination) |
 //! | `matrix.rs` | CSC matrix with a fixed pattern, faer view |
 //! | `pattern.rs` | the assembler's pattern and per-cell scatter positions |
@@ -35,6 +35,8 @@ const BLOCK: usize = 256;
 
 pub struct Assembler {
     pub dofs: DofMap,
+    /// Over the free dofs; a contact problem extends it to its multipliers and contact
+    /// entries (`coupled::CoupledMatrix`), the scatter then following its pattern.
     pub matrix: SparseMatrix,
     /// Counts the assemblies of `matrix` (a copy of it is current while this is unchanged).
     pub matrix_generation: u64,
@@ -81,6 +83,18 @@ impl Assembler {
             matrix_generation: 0,
             bufs: Default::default(),
         })
+    }
+
+    /// The matrix and the cells' scatter, for `CoupledMatrix::update` (which may extend
+    /// the pattern and move the scatter with it), and the dof map.
+    pub fn solid_target(&mut self) -> (coupled::SolidTarget<'_>, &DofMap) {
+        let target = coupled::SolidTarget {
+            matrix: &mut self.matrix,
+            generation: self.matrix_generation,
+            cell_scatter: &mut self.scatter,
+            reserved: LINKED,
+        };
+        (target, &self.dofs)
     }
 
     /// Internal forces at full displacement `u` into `fint` (full dofs, overwritten) and,

@@ -39,16 +39,12 @@ pub struct ContactProblem<'m> {
 pub type CommitHook<'m> = Box<dyn FnMut(&ContactProblem<'m>) + 'm>;
 
 impl<'m> ContactProblem<'m> {
-    /// The coupled tangent from the solid matrix as last assembled and the contact
+    /// The coupled tangent from the solid values as last assembled and the contact
     /// triplets of the last evaluation.
-    fn update_matrix(&mut self) {
-        self.coupled.update(
-            &self.solid.asm.matrix,
-            self.solid.asm.matrix_generation,
-            &self.solid.asm.dofs,
-            self.lam.len(),
-            &self.triplets,
-        );
+    fn update_matrix(&mut self) -> Result<()> {
+        let (target, dofs) = self.solid.asm.solid_target();
+        self.coupled
+            .update(target, dofs, self.lam.len(), &self.triplets)
     }
 
     pub fn new(solid: SolidProblem<'m>, mut pairs: Vec<Box<dyn ContactPair>>) -> Self {
@@ -131,7 +127,7 @@ impl<'m> ContactProblem<'m> {
             norms.constraint = norms.constraint.max(c);
         }
         if contact_tangent {
-            self.update_matrix();
+            self.update_matrix()?;
         }
         Ok(norms)
     }
@@ -178,7 +174,8 @@ impl Nonlinear for ContactProblem<'_> {
     }
 
     fn matrix(&self) -> &SparseMatrix {
-        &self.coupled.matrix
+        // (the solid matrix, extended with the contact terms by `update_matrix`)
+        &self.solid.asm.matrix
     }
 
     fn update_status(&mut self, x: &[f64], lambda: f64) -> Result<usize> {

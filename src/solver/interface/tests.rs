@@ -331,7 +331,7 @@ fn a_change_in_rows_of_unlike_sizes_still_updates_the_interface_lu() {
         for c in 0..a.n {
             for p in a.col_ptr[c]..a.col_ptr[c + 1] {
                 let r = a.row_idx[p];
-                if r >= 2 * len && (r - 2 * len) % 2 == 0 {
+                if r >= 2 * len && (r - 2 * len).is_multiple_of(2) {
                     a.values[p] *= 1e9;
                 }
             }
