@@ -244,6 +244,11 @@ impl OrderedLdlt {
         &self.origin
     }
 
+    /// The values the last `factor_with` was given, per factorised entry (as `origins`).
+    pub fn factored_values(&self) -> &[f64] {
+        &self.permuted_values
+    }
+
     /// Renames the entries of the analysed pattern (what `factor_with` and `origins` give):
     /// a caller that reads its values elsewhere drops its copy of the pattern.
     pub fn relabel_origins(&mut self, new_label: impl Fn(usize) -> usize) {
