@@ -235,8 +235,9 @@ impl CoupledMatrix {
                 m.n, n
             )));
         }
-        let extra = sorted_unique(n, key.iter().flat_map(|&(c, r)| [(c, r), (r, c)]));
-        let extra_ptr = column_starts(n, &extra);
+        // (by column: a row index each, where (column, row) pairs took twice the room)
+        let (extra_ptr, extra) =
+            sorted_unique_columns(n, key.iter().flat_map(|&(c, r)| [(c, r), (r, c)]));
         let old_n = m.n;
         let old_rows = |c: usize| {
             if c < old_n {
@@ -257,7 +258,7 @@ impl CoupledMatrix {
             let mut diagonal = true;
             loop {
                 let ro = old.get(i).copied().unwrap_or(usize::MAX);
-                let rx = new.get(j).map_or(usize::MAX, |e| e.1);
+                let rx = new.get(j).copied().unwrap_or(usize::MAX);
                 let rd = if diagonal { c } else { usize::MAX };
                 let r = ro.min(rx).min(rd);
                 if r == usize::MAX {
@@ -276,13 +277,9 @@ impl CoupledMatrix {
                 "matrix too large for 32-bit scatter positions",
             ));
         }
-        // new position of each old entry, and whether it is a solid one
+        // new position of each old entry
         let old_nnz = m.nnz();
         let mut moved = vec![0u32; old_nnz];
-        let mut solid = vec![true; old_nnz];
-        for &q in &self.non_solid {
-            solid[q] = false;
-        }
         // Room for as many contact entries again: a contact zone that grows by a few
         // segments per iteration then grows the arrays in place, where each reallocation
         // copied both and left their old blocks to the allocator (SSNP154 D
@@ -298,6 +295,9 @@ impl CoupledMatrix {
         m.row_idx.resize(nnz, 0);
         m.values.resize(nnz, 0.0);
         let mut non_solid = vec![];
+        // the old non-solid positions not above the next old entry read (they are read in
+        // decreasing order)
+        let mut below = self.non_solid.len();
         for c in (0..n).rev() {
             let rows = old_rows(c);
             let (mut i, mut j) = (rows.end, extra_ptr[c + 1]);
@@ -311,7 +311,7 @@ impl CoupledMatrix {
                     NO_ROW
                 };
                 let rx = if j > extra_ptr[c] {
-                    extra[j - 1].1
+                    extra[j - 1]
                 } else {
                     NO_ROW
                 };
@@ -323,7 +323,10 @@ impl CoupledMatrix {
                     i -= 1;
                     let v = m.values[i];
                     moved[i] = w as u32;
-                    if !solid[i] {
+                    while below > 0 && self.non_solid[below - 1] > i {
+                        below -= 1;
+                    }
+                    if below > 0 && self.non_solid[below - 1] == i {
                         non_solid.push(w);
                     }
                     m.values[w] = v;
@@ -340,7 +343,6 @@ impl CoupledMatrix {
                 }
             }
         }
-        drop(solid);
         for s in cell_scatter.iter_mut().filter(|s| **s < reserved) {
             *s = moved[*s as usize];
         }
@@ -358,38 +360,43 @@ impl CoupledMatrix {
 /// No row (the merges' end marker; rows are below it).
 const NO_ROW: usize = usize::MAX;
 
-/// Where each column's entries start in `pairs` (sorted by column), and the end.
-fn column_starts(n: usize, pairs: &[(usize, usize)]) -> Vec<usize> {
-    let mut ptr = vec![0; n + 1];
-    for &(c, _) in pairs {
-        ptr[c + 1] += 1;
-    }
-    for c in 0..n {
-        ptr[c + 1] += ptr[c];
-    }
-    ptr
-}
-
-/// The distinct (column, row) pairs (both < n), sorted: bucketed by column (counting), then
-/// each column's rows sorted and deduplicated in place.
+/// The distinct (column, row) pairs (both < n), sorted.
 fn sorted_unique(
     n: usize,
     pairs: impl Iterator<Item = (usize, usize)> + Clone,
 ) -> Vec<(usize, usize)> {
-    let (ptr, mut rows) = super::matrix::group_by_key(n, pairs);
-    let mut out = Vec::with_capacity(rows.len());
+    let (ptr, rows) = sorted_unique_columns(n, pairs);
+    (0..n)
+        .flat_map(|c| rows[ptr[c]..ptr[c + 1]].iter().map(move |&r| (c, r)))
+        .collect()
+}
+
+/// The distinct (column, row) pairs (both < n) by column: each column's rows are
+/// `rows[ptr[c]..ptr[c + 1]]`, increasing. Bucketed by column (counting), then each
+/// column's rows sorted and deduplicated in place.
+fn sorted_unique_columns(
+    n: usize,
+    pairs: impl Iterator<Item = (usize, usize)> + Clone,
+) -> (Vec<usize>, Vec<usize>) {
+    let (mut ptr, mut rows) = super::matrix::group_by_key(n, pairs);
+    let mut w = 0;
     for c in 0..n {
-        let col = &mut rows[ptr[c]..ptr[c + 1]];
-        col.sort_unstable();
+        let (start, end) = (ptr[c], ptr[c + 1]);
+        rows[start..end].sort_unstable();
+        ptr[c] = w;
         let mut last = usize::MAX;
-        for &r in col.iter() {
+        for q in start..end {
+            let r = rows[q];
             if r != last {
-                out.push((c, r));
+                rows[w] = r;
+                w += 1;
                 last = r;
             }
         }
     }
-    out
+    ptr[n] = w;
+    rows.truncate(w);
+    (ptr, rows)
 }
 
 #[cfg(test)]

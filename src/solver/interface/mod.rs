@@ -361,7 +361,7 @@ impl InterfaceSolver {
         }
         for b in &self.blocks {
             for (lj, &gj) in b.gamma.iter().enumerate() {
-                for (&gi, &v) in b.gamma.iter().zip(b.schur.col_as_slice(lj)) {
+                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
                     look(gi, gj, v);
                 }
             }
@@ -395,7 +395,7 @@ impl InterfaceSolver {
                     continue;
                 }
                 let column = t.col_as_slice_mut(at[gj]);
-                for (&gi, &v) in b.gamma.iter().zip(b.schur.col_as_slice(lj)) {
+                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
                     if at[gi] != NONE {
                         column[at[gi]] += v;
                     }
@@ -482,7 +482,7 @@ impl InterfaceSolver {
             let zg = &z[blk.interior..];
             let mut s = zg.to_vec();
             for (lj, &zj) in zg.iter().enumerate() {
-                let column = &blk.lgg.col_as_slice(lj)[lj + 1..];
+                let column = &blk.trailing.col_as_slice(lj)[lj + 1..];
                 for (si, &l) in s[lj + 1..].iter_mut().zip(column) {
                     *si += l * zj;
                 }
@@ -510,7 +510,7 @@ impl InterfaceSolver {
                 for li in 0..blk.gamma.len() {
                     let mut s = xg[blk.gamma[li]];
                     for lj in li + 1..blk.gamma.len() {
-                        s += blk.lgg[(lj, li)] * xg[blk.gamma[lj]];
+                        s += blk.trailing[(lj, li)] * xg[blk.gamma[lj]];
                     }
                     w[m + li] = s;
                 }

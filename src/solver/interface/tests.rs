@@ -221,15 +221,20 @@ fn the_searched_interface_is_the_one_from_transpose_positions() {
     assert_eq!(interface_of(&a, 60, &t), interface_searched(&a, 60));
 }
 
+/// The entries of the two chains of `two_bodies` alone (no ties).
+fn two_chains_entries(len: usize) -> Vec<(usize, usize, f64)> {
+    two_bodies_entries(len)
+        .into_iter()
+        .filter(|&(r, c, _)| r < 2 * len && c < 2 * len)
+        .filter(|&(r, c, _)| r == c || (r < len) == (c < len))
+        .collect()
+}
+
 /// Two chains of `len` springs tied at `ties` pairs of unknowns by multipliers (each with
 /// a non-symmetric friction-like coupling): an interface of 3 × `ties` unknowns. The ties
 /// in `open` are open: their multiplier's couplings zero, its row λ = 0.
 fn tied_chains(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
-    let mut e: Vec<(usize, usize, f64)> = two_bodies_entries(len)
-        .into_iter()
-        .filter(|&(r, c, _)| r < 2 * len && c < 2 * len)
-        .filter(|&(r, c, _)| r == c || (r < len) == (c < len))
-        .collect();
+    let mut e = two_chains_entries(len);
     let m = 2 * len;
     for k in 0..ties {
         let (a, b) = (len - 1 - k, len + k);
@@ -276,11 +281,7 @@ fn a_re_solve_updates_the_interface_lu_and_stays_exact() {
 /// contact pattern change between interface unknowns: the tied unknowns stay in the
 /// interface through their friction-like coupling).
 fn tied_chains_sparse(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
-    let mut e: Vec<(usize, usize, f64)> = two_bodies_entries(len)
-        .into_iter()
-        .filter(|&(r, c, _)| r < 2 * len && c < 2 * len)
-        .filter(|&(r, c, _)| r == c || (r < len) == (c < len))
-        .collect();
+    let mut e = two_chains_entries(len);
     let m = 2 * len;
     for k in 0..ties {
         let (a, b) = (len - 1 - k, len + k);
