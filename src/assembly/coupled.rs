@@ -63,18 +63,17 @@ pub struct CoupledMatrix {
     non_solid: Vec<usize>,
     /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
     key: Vec<(usize, usize)>,
-    /// The (row, col) sequence of the last triplets and, for each triplet, its targets
-    /// (`scatter[scatter_ptr[t]..scatter_ptr[t + 1]]`: value position, coefficient). Contact
-    /// terms emit the same sequence from one iteration to the next, so the expansion, sort
-    /// and searches run only when it changes.
-    last_triplets: Vec<(usize, usize)>,
-    scatter_ptr: Vec<usize>,
-    scatter: Vec<(usize, f64)>,
+    /// The (row, col) sequence of the last triplets and, for each triplet, its targets.
+    /// Contact terms emit the same sequence from one iteration to the next, so the
+    /// expansion, sort and searches run only when it changes.
+    last_triplets: Vec<(u32, u32)>,
+    targets: Targets,
     /// The assembler's `matrix_generation` of the solid values in the matrix, and the
-    /// solid part of the values at the positions the triplets wrote then: with the same
-    /// solid values only those are reset and the triplets added again.
+    /// solid part of the values at the targets (as `targets.at`) when the triplets were
+    /// added: with the same solid values only those are reset and the triplets added
+    /// again.
     solid_generation: Option<u64>,
-    solid_at_scatter: Vec<(usize, f64)>,
+    solid_at_targets: Vec<f64>,
     /// Number of pattern rebuilds (for reports).
     pub rebuilds: usize,
 }
@@ -105,8 +104,8 @@ impl CoupledMatrix {
         // the solid values alone: freshly assembled (every other value zeroed), or the
         // last triplets' positions reset
         if self.solid_generation == Some(solid.generation) {
-            for &(q, v) in &self.solid_at_scatter {
-                m.values[q] = v;
+            for (&q, &v) in self.targets.at.iter().zip(&self.solid_at_targets) {
+                m.values[q as usize] = v;
             }
         }
         self.solid_generation = Some(solid.generation);
@@ -117,16 +116,17 @@ impl CoupledMatrix {
                 .entries
                 .iter()
                 .zip(&self.last_triplets)
-                .all(|(t, k)| t.0 == k.0 && t.1 == k.1);
+                .all(|(t, k)| t.0 == k.0 as usize && t.1 == k.1 as usize);
         if !same {
             self.prepare(m, solid.cell_scatter, solid.reserved, dofs, n_extra, extra)?;
         }
-        self.solid_at_scatter.clear();
-        self.solid_at_scatter
-            .extend(self.scatter.iter().map(|&(q, _)| (q, m.values[q])));
+        self.solid_at_targets.clear();
+        let at = &self.targets.at;
+        self.solid_at_targets
+            .extend(at.iter().map(|&q| m.values[q as usize]));
         for (t, &(_, _, v)) in extra.entries.iter().enumerate() {
-            for &(q, coef) in &self.scatter[self.scatter_ptr[t]..self.scatter_ptr[t + 1]] {
-                m.values[q] += coef * v;
+            for s in self.targets.of(t) {
+                m.values[at[s] as usize] += self.targets.coefficient(s) * v;
             }
         }
         Ok(())
@@ -158,8 +158,8 @@ impl CoupledMatrix {
         };
         // (column, row, coefficient) per target, grouped by triplet
         let mut targets: Vec<(usize, usize, f64)> = Vec::with_capacity(extra.entries.len());
-        self.scatter_ptr.clear();
-        self.scatter_ptr.push(0);
+        let mut ptr = Vec::with_capacity(extra.entries.len() + 1);
+        ptr.push(0);
         for &(r, c, _) in &extra.entries {
             expand(r, &mut ex_r);
             expand(c, &mut ex_c);
@@ -168,21 +168,22 @@ impl CoupledMatrix {
                     targets.push((j, i, ci * cj));
                 }
             }
-            self.scatter_ptr.push(targets.len());
+            ptr.push(targets.len());
         }
         // Status changes usually keep every target inside the current pattern (it holds the
         // explicit zeros of all candidate couplings): then no sort and no rebuild.
         let fits = self.n == n;
-        let mut scatter = Vec::with_capacity(targets.len());
+        // (positions fit in 32 bits: the assembler and `rebuild` refuse larger matrices)
+        let mut at = Vec::with_capacity(targets.len());
         if fits {
-            for &(col, row, coef) in &targets {
+            for &(col, row, _) in &targets {
                 match m.position(row, col) {
-                    Some(q) => scatter.push((q, coef)),
+                    Some(q) => at.push(q as u32),
                     None => break,
                 }
             }
         }
-        if scatter.len() < targets.len() {
+        if at.len() < targets.len() {
             // the pattern only grows (a pair that sends its explicit zeros only when its
             // candidates change keeps them when another pair's new entries force a rebuild)
             let old: &[(usize, usize)] = if fits { &self.key } else { &[] };
@@ -197,18 +198,34 @@ impl CoupledMatrix {
                 self.rebuild(m, cell_scatter, reserved, n, &key)?;
                 self.key = key;
             }
-            scatter = targets
+            at = targets
                 .iter()
-                .map(|&(col, row, coef)| {
+                .map(|&(col, row, _)| {
                     let q = m
                         .position(row, col)
                         .expect("pattern holds every contributed entry");
-                    (q, coef)
+                    q as u32
                 })
                 .collect();
         }
-        self.scatter = scatter;
-        self.last_triplets = extra.entries.iter().map(|t| (t.0, t.1)).collect();
+        // one target of coefficient one per triplet (no linked dof among them): no
+        // pointers, no coefficients
+        let plain = ptr.windows(2).all(|w| w[1] == w[0] + 1) && targets.iter().all(|t| t.2 == 1.0);
+        self.targets = Targets {
+            ptr: if plain { vec![] } else { ptr },
+            at,
+            coefficients: if plain {
+                vec![]
+            } else {
+                targets.iter().map(|t| t.2).collect()
+            },
+        };
+        let id = |i: usize| u32::try_from(i).map_err(|_| too_large());
+        self.last_triplets = extra
+            .entries
+            .iter()
+            .map(|t| Ok((id(t.0)?, id(t.1)?)))
+            .collect::<Result<_>>()?;
         Ok(())
     }
 
@@ -273,9 +290,7 @@ impl CoupledMatrix {
         }
         let nnz = col_ptr[n];
         if nnz >= reserved as usize {
-            return Err(Error::solve(
-                "matrix too large for 32-bit scatter positions",
-            ));
+            return Err(too_large());
         }
         // new position of each old entry
         let old_nnz = m.nnz();
@@ -355,6 +370,37 @@ impl CoupledMatrix {
         self.rebuilds += 1;
         Ok(())
     }
+}
+
+/// Where each triplet's value goes: triplet t's targets are `at[s]` with coefficient
+/// `coefficient(s)` for s in `of(t)`. The usual case, one target of coefficient one per
+/// triplet, keeps neither pointers nor coefficients (`ptr` and `coefficients` empty).
+#[derive(Default)]
+struct Targets {
+    ptr: Vec<usize>,
+    at: Vec<u32>,
+    coefficients: Vec<f64>,
+}
+
+impl Targets {
+    fn of(&self, t: usize) -> std::ops::Range<usize> {
+        if self.ptr.is_empty() {
+            t..t + 1
+        } else {
+            self.ptr[t]..self.ptr[t + 1]
+        }
+    }
+    fn coefficient(&self, s: usize) -> f64 {
+        if self.coefficients.is_empty() {
+            1.0
+        } else {
+            self.coefficients[s]
+        }
+    }
+}
+
+fn too_large() -> Error {
+    Error::solve("matrix too large for 32-bit scatter positions")
 }
 
 /// No row (the merges' end marker; rows are below it).
@@ -583,5 +629,66 @@ mod tests {
         // same pattern (the first triplets' entries are the second's)
         assert_eq!(m.row_idx, reassembled.row_idx);
         assert_eq!(m.values, reassembled.values);
+    }
+
+    /// Triplets on a fixed dof (no target) and on a linked one (a target per term, with
+    /// its coefficient) land as an explicit expansion puts them.
+    #[test]
+    fn triplets_on_fixed_and_linked_dofs_expand_to_their_targets() {
+        use crate::assembly::dofs::Relation;
+        // 8 dofs: dof 6 fixed, 2 u7 − u4 − u5 = 0 (one of the three eliminated): 6 free
+        let link = Relation {
+            terms: vec![(7, 2.0), (4, -1.0), (5, -1.0)],
+            rhs: 0.0,
+            name: "mean".into(),
+        };
+        let dofs = DofMap::new(&[true; 8], &[(6, 0.0)], &[link]).unwrap();
+        assert_eq!(dofs.num_free, 6);
+        let (mut m, mut cells) = solid(1.0);
+        let (solid0, _) = solid(1.0);
+        let mut t = Triplets::default();
+        // extended ids: dofs 0–7, the extra unknown 8
+        for (r, c, v) in [
+            (6, 8, 0.5),
+            (8, 6, 0.5),
+            (7, 8, 1.5),
+            (8, 7, 1.5),
+            (4, 7, 0.25),
+        ] {
+            t.add(r, c, v);
+        }
+        t.add(8, 8, -2.0);
+        let mut c = CoupledMatrix::default();
+        c.update(target(&mut m, &mut cells, 0), &dofs, 1, &t)
+            .unwrap();
+        assert!(!c.targets.ptr.is_empty(), "not one target per triplet");
+        let mut expected = vec![vec![0.0; 7]; 7];
+        for j in 0..6 {
+            for p in solid0.col_ptr[j]..solid0.col_ptr[j + 1] {
+                expected[solid0.row_idx[p]][j] = solid0.values[p];
+            }
+        }
+        let expand = |id: usize| {
+            let mut out = vec![];
+            if id < 8 {
+                dofs.expand_dof(id, &mut out);
+            } else {
+                out.push((6, 1.0));
+            }
+            out
+        };
+        for &(r, c, v) in &t.entries {
+            for (i, ci) in expand(r) {
+                for (j, cj) in expand(c) {
+                    expected[i][j] += ci * cj * v;
+                }
+            }
+        }
+        for (i, row) in expected.iter().enumerate() {
+            for (j, &e) in row.iter().enumerate() {
+                let got = m.position(i, j).map_or(0.0, |q| m.values[q]);
+                assert_eq!(got, e, "entry ({i}, {j})");
+            }
+        }
     }
 }
