@@ -2,7 +2,7 @@
 //!
 //! | file | what |
 //! |---|---|
-//! | `coupled.rs` | the solid matrix extended in place by contact triplets over extra unknowns |
+//! | `coupled/` | the solid matrix extended in place by contact triplets over extra unknowns |
 //! | `dofs.rs` | `DofMap`: free, imposed and linked dofs (elimination) |
 //! | `matrix.rs` | CSC matrix with a fixed pattern, faer view |
 //! | `pattern.rs` | the assembler's pattern and per-cell scatter positions |

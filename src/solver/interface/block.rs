@@ -196,8 +196,8 @@ impl Block {
         self.ldlt
             .factor_with(|p, _, _| if p == NONE { shift } else { a.values[p] })?;
         let k = self.unknowns.len() - self.interior;
-        // (the last factorisation's L_ΓΓ and S' are overwritten in their storage: no
-        // fresh pages to fault in at every factorisation)
+        // (L_ΓΓ and S' overwrite the last factorisation's in `trailing`'s storage; the
+        // product's work matrices, like `ld`, are the allocator's to recycle)
         let d = self.ldlt.trailing_block(k, &mut self.trailing);
         let l = &self.trailing;
         let ld = Mat::from_fn(k, k, |i, j| if i >= j { l[(i, j)] * d[j] } else { 0.0 });
