@@ -13,7 +13,6 @@
 use super::dofs::DofMap;
 use super::matrix::SparseMatrix;
 use crate::error::{Error, Result};
-use rebuild::sorted_unique;
 
 mod rebuild;
 #[cfg(test)]
@@ -72,8 +71,6 @@ pub struct CoupledMatrix {
     n: usize,
     /// Positions of the entries no solid value lands on (sorted).
     non_solid: Vec<usize>,
-    /// Entries contributed by the triplets, in unknown numbering (sorted by column, row).
-    key: Vec<(usize, usize)>,
     /// The (row, col) sequence of the last triplets and, for each triplet, its targets.
     /// Contact terms emit the same sequence from one iteration to the next, so the
     /// expansion, sort and searches run only when it changes.
@@ -195,20 +192,11 @@ impl CoupledMatrix {
             }
         }
         if at.len() < targets.len() {
-            // the pattern only grows (a pair that sends its explicit zeros only when its
-            // candidates change keeps them when another pair's new entries force a rebuild)
-            let old: &[(usize, usize)] = if fits { &self.key } else { &[] };
-            let key = sorted_unique(
-                n,
-                targets
-                    .iter()
-                    .map(|t| (t.0, t.1))
-                    .chain(old.iter().copied()),
-            );
-            if key != self.key || !fits {
-                self.rebuild(m, cell_scatter, reserved, n, &key)?;
-                self.key = key;
-            }
+            // (the pattern only grows: the rebuild keeps every entry of the last one, so a
+            // pair that sends its explicit zeros only when its candidates change keeps them
+            // when another pair's new entries force a rebuild)
+            let pairs = targets.iter().map(|t| (t.0, t.1));
+            self.rebuild(m, cell_scatter, reserved, n, pairs)?;
             at = targets
                 .iter()
                 .map(|&(col, row, _)| {

@@ -21,7 +21,7 @@ impl CoupledMatrix {
         cell_scatter: &mut [u32],
         reserved: u32,
         n: usize,
-        key: &[(usize, usize)],
+        contributed: impl Iterator<Item = (usize, usize)> + Clone,
     ) -> Result<()> {
         if n < m.n {
             return Err(Error::solve(format!(
@@ -31,7 +31,7 @@ impl CoupledMatrix {
         }
         // (by column: a row index each, where (column, row) pairs took twice the room)
         let (extra_ptr, extra) =
-            sorted_unique_columns(n, key.iter().flat_map(|&(c, r)| [(c, r), (r, c)]));
+            sorted_unique_columns(n, contributed.flat_map(|(c, r)| [(c, r), (r, c)]));
         let old_n = m.n;
         let old_rows = |c: usize| {
             if c < old_n {
@@ -152,21 +152,10 @@ impl CoupledMatrix {
 /// No row (the merges' end marker; rows are below it).
 const NO_ROW: usize = usize::MAX;
 
-/// The distinct (column, row) pairs (both < n), sorted.
-pub(super) fn sorted_unique(
-    n: usize,
-    pairs: impl Iterator<Item = (usize, usize)> + Clone,
-) -> Vec<(usize, usize)> {
-    let (ptr, rows) = sorted_unique_columns(n, pairs);
-    (0..n)
-        .flat_map(|c| rows[ptr[c]..ptr[c + 1]].iter().map(move |&r| (c, r)))
-        .collect()
-}
-
 /// The distinct (column, row) pairs (both < n) by column: each column's rows are
 /// `rows[ptr[c]..ptr[c + 1]]`, increasing. Bucketed by column (counting), then each
 /// column's rows sorted and deduplicated in place.
-fn sorted_unique_columns(
+pub(super) fn sorted_unique_columns(
     n: usize,
     pairs: impl Iterator<Item = (usize, usize)> + Clone,
 ) -> (Vec<usize>, Vec<usize>) {

@@ -24,7 +24,7 @@ fn clique_union_sends_each_entry_once() {
 }
 
 #[test]
-fn sorted_unique_equals_sort_and_dedup() {
+fn sorted_unique_columns_equals_sort_and_dedup() {
     let pairs: Vec<(usize, usize)> = (0..500u64)
         .map(|i| {
             let h = i.wrapping_mul(2654435761) ^ (i >> 3);
@@ -38,7 +38,11 @@ fn sorted_unique_equals_sort_and_dedup() {
         expected.len() < pairs.len(),
         "the sample has repeated pairs"
     );
-    assert_eq!(sorted_unique(41, pairs.iter().copied()), expected);
+    let (ptr, rows) = rebuild::sorted_unique_columns(41, pairs.iter().copied());
+    let got: Vec<(usize, usize)> = (0..41)
+        .flat_map(|c| rows[ptr[c]..ptr[c + 1]].iter().map(move |&r| (c, r)))
+        .collect();
+    assert_eq!(got, expected);
 }
 
 /// A tridiagonal solid matrix over 6 free dofs (3 nodes), as assembled (`scale` on its
