@@ -157,7 +157,9 @@ fn contact(
     }
     let c = ssnp154::contact_case(setup, spec, Some(formulation));
     let t = Instant::now();
-    let outcome = case::run_keeping(&c, mesh, false);
+    // SCALE_VERBOSE=1 prints the Newton iterations (on stderr, as `tribo run` does)
+    let verbose = std::env::var_os("SCALE_VERBOSE").is_some_and(|v| v == "1");
+    let outcome = case::run_keeping(&c, mesh, verbose);
     let time = t.elapsed().as_secs_f64().to_string();
     let (report, failure) = match &outcome {
         Ok(o) => (Some(&o.report), None),

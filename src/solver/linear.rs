@@ -33,7 +33,9 @@ impl Factorisation {
         Ok(match interface_of(a, np, transpose) {
             Some(in_gamma) => {
                 *transpose = vec![];
-                Factorisation::Interface(Box::new(InterfaceSolver::new(a, in_gamma, storage)?))
+                Factorisation::Interface(Box::new(
+                    InterfaceSolver::new(a, in_gamma, storage)?.with_multipliers_from(np),
+                ))
             }
             None => {
                 drop(storage);

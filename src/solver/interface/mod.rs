@@ -18,10 +18,13 @@
 //!
 //! Files: `block.rs` (one body's block and its Schur complement), `dense_lu.rs` (the
 //! interface matrix's LU), `update.rs` (an active-set re-solve as a low-rank change of the
-//! last LU, where T changes in a few rows only).
+//! last LU, where T changes in a few rows only), `reduced.rs` (T reduced onto the unknowns
+//! that carry contact terms, so that a correction with the bodies' factorisations kept
+//! costs an LU of those alone).
 
 mod block;
 mod dense_lu;
+mod reduced;
 mod update;
 
 use crate::assembly::matrix::SparseMatrix;
@@ -29,6 +32,7 @@ use crate::error::{Error, Result};
 use block::Block;
 use dense_lu::DenseLu;
 use rayon::prelude::*;
+use reduced::MIN_PASSIVE;
 use update::{Factorised, Update, ZColumns};
 
 /// Larger interfaces go to the saddle-point LDLᵀ (GMRES on a symmetric approximation).
@@ -46,6 +50,9 @@ const NONE: usize = usize::MAX;
 
 pub struct InterfaceSolver {
     n: usize,
+    /// The unknowns from this one on are multipliers (n: none known, then the interface
+    /// matrix is never reduced onto its live unknowns, `reduced.rs`).
+    np: usize,
     /// Global index of each interface unknown.
     gamma: Vec<usize>,
     blocks: Vec<Block>,
@@ -223,6 +230,7 @@ impl InterfaceSolver {
         let gamma_entries = gamma_entries(a, &gamma);
         Ok(InterfaceSolver {
             n,
+            np: n,
             gamma,
             blocks,
             gamma_entries,
@@ -268,6 +276,10 @@ impl InterfaceSolver {
         let entries = gamma_entries(a, &self.gamma);
         let old = std::mem::replace(&mut self.gamma_entries, entries);
         self.relabel_factorised(&old);
+        if let Some(r) = &mut self.base.reduction {
+            // (its values are by the old entries)
+            r.values.clear();
+        }
         self.update = None;
         true
     }
@@ -310,6 +322,13 @@ impl InterfaceSolver {
         self.factorised = values;
     }
 
+    /// The unknowns from `np` on are multipliers: the interface matrix may then be reduced
+    /// onto the unknowns that carry contact terms (`reduced.rs`).
+    pub fn with_multipliers_from(mut self, np: usize) -> Self {
+        self.np = np.min(self.n);
+        self
+    }
+
     /// Its large buffers, for the next analysis.
     pub fn into_storage(self) -> Storage {
         Storage {
@@ -331,8 +350,10 @@ impl InterfaceSolver {
             .par_iter_mut()
             .map(|b| b.factor(a))
             .collect::<Result<Vec<bool>>>()?;
-        // An active-set re-solve: the LU at hand and a low-rank change (`update.rs`).
-        if !refactored.contains(&true) && self.updated(a) {
+        // An active-set re-solve or a frozen-body correction: the LU at hand and a
+        // low-rank change (`update.rs`), or the reduction at hand and a new LU of its live
+        // part (`reduced.rs`).
+        if !refactored.contains(&true) && (self.updated(a) || self.live_refactored(a)) {
             return Ok(());
         }
         self.factorised.clear(); // until this factorisation is made
@@ -371,15 +392,31 @@ impl InterfaceSolver {
                 "the system matrix is singular: non-finite interface matrix",
             ));
         }
+        // Reduced onto its live unknowns when enough of them are passive (`reduced.rs`);
+        // then every multiplier is kept (live), so that a contact point that closes
+        // changes the live part only.
+        let live = self.live_unknowns(a);
+        let passive = (0..k).filter(|&i| coupled[i] && !live[i]).count();
+        let reduce = passive >= MIN_PASSIVE;
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];
         for i in 0..k {
-            if coupled[i] || diagonal[i] == 0.0 {
+            if coupled[i] || diagonal[i] == 0.0 || (reduce && self.gamma[i] >= self.np) {
                 at[i] = base.kept.len();
                 base.kept.push(i);
             }
         }
+        let values = self
+            .gamma_entries
+            .iter()
+            .map(|&(p, _, _)| a.values[p])
+            .collect();
+        if reduce {
+            self.reduce(a, at, diagonal, values, &live);
+            return Ok(());
+        }
+        base.reduction = None;
         // The interface matrix of the kept unknowns, in the storage of the last LU (no
         // fresh pages to fault in at every Newton iteration).
         let mut t = base.lu.take_storage(base.kept.len(), k);
@@ -405,11 +442,7 @@ impl InterfaceSolver {
         base.lu.factor(t);
         base.at = at;
         base.diagonal = diagonal;
-        self.factorised = self
-            .gamma_entries
-            .iter()
-            .map(|&(p, _, _)| a.values[p])
-            .collect();
+        self.factorised = values;
         self.z.clear(k);
         Ok(())
     }
@@ -430,6 +463,17 @@ impl InterfaceSolver {
             }
             if v.to_bits() != old.to_bits() {
                 changes.push((i, j, v - old));
+            }
+        }
+        // With the matrix reduced, Z's columns (2k² flops each) pay against a new LU of
+        // its live part ((2/3) l³) for fewer than l³ / 3k² changed rows.
+        if let Some(red) = &self.base.reduction {
+            let mut rows: Vec<usize> = changes.iter().map(|c| c.0).collect();
+            rows.sort_unstable();
+            rows.dedup();
+            let (k, l) = (self.base.kept.len() as f64, red.num_live() as f64);
+            if 3.0 * k * k * rows.len() as f64 > l * l * l {
+                return false;
             }
         }
         self.update = if changes.is_empty() {

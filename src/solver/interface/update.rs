@@ -10,6 +10,7 @@
 //! is made instead when R passes k / `MAX_ROWS_FRACTION` or C is near singular.
 
 use super::dense_lu::DenseLu;
+use super::reduced::Reduction;
 use super::NONE;
 use faer::Mat;
 
@@ -21,11 +22,13 @@ pub(super) const MAX_ROWS_FRACTION: usize = 6;
 const MIN_PIVOT_RATIO: f64 = 1e-8;
 
 /// The interface matrix as last factorised: the coupled unknowns `kept` (position
-/// `at[i]` among them, NONE for a decoupled one) by `lu`, each decoupled unknown alone by
-/// its `diagonal`.
+/// `at[i]` among them, NONE for a decoupled one) by `lu`, or by `reduction` when it is
+/// reduced onto its live unknowns (`reduced.rs`), each decoupled unknown alone by its
+/// `diagonal`.
 #[derive(Default)]
 pub(super) struct Factorised {
     pub lu: DenseLu,
+    pub reduction: Option<Reduction>,
     pub kept: Vec<usize>,
     pub at: Vec<usize>,
     pub diagonal: Vec<f64>,
@@ -35,12 +38,21 @@ impl Factorised {
     /// x ← T⁻¹ x (x over the interface).
     pub(super) fn solve(&self, x: &mut [f64]) {
         let mut xr = Mat::<f64>::from_fn(self.kept.len(), 1, |i, _| x[self.kept[i]]);
-        self.lu.solve(&mut xr);
+        self.solve_coupled(&mut xr);
         for (i, v) in x.iter_mut().enumerate() {
             *v = match self.at[i] {
                 NONE => *v / self.diagonal[i],
                 p => xr[(p, 0)],
             };
+        }
+    }
+
+    /// m ← T⁻¹ m over the coupled unknowns (rows: their positions in `kept`).
+    pub(super) fn solve_coupled(&self, m: &mut Mat<f64>) {
+        match &self.reduction {
+            Some(r) => r.solve(m),
+            None if m.ncols() > 1 => self.lu.solve_many(m),
+            None => self.lu.solve(m),
         }
     }
 }
@@ -75,7 +87,7 @@ impl ZColumns {
             m[(t.at[r], c)] = 1.0;
         }
         if !coupled.is_empty() {
-            t.lu.solve_many(&mut m);
+            t.solve_coupled(&mut m);
         }
         let mut next = 0;
         for r in new {

@@ -1,0 +1,301 @@
+//! The interface matrix reduced onto its live unknowns. Most displacement unknowns of the
+//! interface carry no contact term at a given point (SSNP154 D point-to-segment at 93k
+//! unknowns: 1782 of them, of which 500–700 touch a contact point's multiplier): their
+//! rows and columns of T hold the bodies' Schur complements and solid entries only, which
+//! stay as they are while the bodies' factorisations are kept (frozen-body corrections,
+//! active-set re-solves). With P those passive unknowns and L the others (multipliers,
+//! displacements that share an entry with one, and their neighbours),
+//!   T = [T_PP T_PL; T_LP T_LL],  X = T_PP⁻¹ T_PL,  R = T_LL − T_LP X,
+//!   T x = b:  y = T_PP⁻¹ b_P,  x_L = R⁻¹ (b_L − T_LP y),  x_P = y − X x_L,
+//! exact, as the LU of T. The first reduction costs about what that LU costs; a later
+//! matrix that differs from it in L × L only is R plus that difference, whose LU is of
+//! order |L| (about a tenth of the flops at |L| ≈ k/2).
+
+use super::dense_lu::DenseLu;
+use super::{InterfaceSolver, NONE};
+use crate::assembly::matrix::SparseMatrix;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, Mat, Par};
+
+/// Passive unknowns below which the interface is factorised whole (the reduction's extra
+/// passes do not pay on small interfaces, whose LU costs milliseconds).
+pub(super) const MIN_PASSIVE: usize = if cfg!(test) { 4 } else { 256 };
+
+/// Where a coupled interface unknown sits in the reduction.
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum Place {
+    Passive(usize),
+    Live(usize),
+}
+
+pub(super) struct Reduction {
+    /// positions among the coupled unknowns (`Factorised::kept`) of P and of L
+    passive: Vec<usize>,
+    live: Vec<usize>,
+    /// T_PP's LU, X = T_PP⁻¹ T_PL, T_LP, and R = T_LL − T_LP X at the values reduced
+    pp: DenseLu,
+    x: Mat<f64>,
+    lp: Mat<f64>,
+    r: Mat<f64>,
+    /// the LU of the live matrix: R plus the change of T_LL since the reduction
+    ll: DenseLu,
+    /// each coupled unknown's place (by position among the coupled ones)
+    place: Vec<Place>,
+    /// A's interface entries' values at the reduction, in the order of the interface
+    /// entries (emptied when they are relabelled: a rebind)
+    pub(super) values: Vec<f64>,
+}
+
+/// The four blocks of T, filled by `add` and reduced by `finish`.
+pub(super) struct Blocks {
+    passive: Vec<usize>,
+    live: Vec<usize>,
+    /// each coupled unknown's place (by position among the coupled ones)
+    place: Vec<Place>,
+    pp: Mat<f64>,
+    pl: Mat<f64>,
+    lp: Mat<f64>,
+    ll: Mat<f64>,
+}
+
+impl Blocks {
+    /// Zero blocks for the coupled unknowns split by `is_live` (by position among them).
+    pub(super) fn new(is_live: &[bool]) -> Self {
+        let mut place = Vec::with_capacity(is_live.len());
+        let (mut passive, mut live) = (vec![], vec![]);
+        for (i, &l) in is_live.iter().enumerate() {
+            if l {
+                place.push(Place::Live(live.len()));
+                live.push(i);
+            } else {
+                place.push(Place::Passive(passive.len()));
+                passive.push(i);
+            }
+        }
+        let (p, l) = (passive.len(), live.len());
+        Blocks {
+            passive,
+            live,
+            place,
+            pp: Mat::zeros(p, p),
+            pl: Mat::zeros(p, l),
+            lp: Mat::zeros(l, p),
+            ll: Mat::zeros(l, l),
+        }
+    }
+
+    /// T[i, j] += v (i, j by position among the coupled unknowns).
+    #[inline]
+    pub(super) fn add(&mut self, i: usize, j: usize, v: f64) {
+        match (self.place[i], self.place[j]) {
+            (Place::Passive(a), Place::Passive(b)) => self.pp[(a, b)] += v,
+            (Place::Passive(a), Place::Live(b)) => self.pl[(a, b)] += v,
+            (Place::Live(a), Place::Passive(b)) => self.lp[(a, b)] += v,
+            (Place::Live(a), Place::Live(b)) => self.ll[(a, b)] += v,
+        }
+    }
+
+    /// The reduction (and the LU of R) of the blocks filled, for A's interface values
+    /// `values`.
+    pub(super) fn finish(self, values: Vec<f64>) -> Reduction {
+        let par = |k: usize| if k >= 1000 { Par::rayon(0) } else { Par::Seq };
+        let mut pp = DenseLu::default();
+        pp.factor(self.pp);
+        let mut x = self.pl;
+        pp.solve_many(&mut x);
+        let mut r = self.ll;
+        let l = r.nrows();
+        matmul(
+            r.as_mut(),
+            Accum::Add,
+            self.lp.as_ref(),
+            x.as_ref(),
+            -1.0,
+            par(l),
+        );
+        let mut ll = DenseLu::default();
+        ll.factor(r.clone());
+        Reduction {
+            passive: self.passive,
+            live: self.live,
+            pp,
+            x,
+            lp: self.lp,
+            r,
+            ll,
+            place: self.place,
+            values,
+        }
+    }
+}
+
+impl Reduction {
+    pub(super) fn num_live(&self) -> usize {
+        self.live.len()
+    }
+
+    /// Where the coupled unknown at position i sits.
+    pub(super) fn place(&self, i: usize) -> Place {
+        self.place[i]
+    }
+
+    /// Factorises R + `change` (live rows and columns) as the live matrix.
+    pub(super) fn refactor_live(&mut self, change: &[(usize, usize, f64)]) {
+        let l = self.r.nrows();
+        let mut m = self.ll.take_storage(l, l);
+        m.copy_from(&self.r);
+        for &(i, j, v) in change {
+            m[(i, j)] += v;
+        }
+        self.ll.factor(m);
+    }
+
+    /// Solves T x = b in place for the columns of `m` (rows: the coupled unknowns).
+    pub(super) fn solve(&self, m: &mut Mat<f64>) {
+        let c = m.ncols();
+        let mut bp = Mat::from_fn(self.passive.len(), c, |i, j| m[(self.passive[i], j)]);
+        let mut bl = Mat::from_fn(self.live.len(), c, |i, j| m[(self.live[i], j)]);
+        let many = c >= 16;
+        let solve = |lu: &DenseLu, v: &mut Mat<f64>| {
+            if many {
+                lu.solve_many(v)
+            } else {
+                lu.solve(v)
+            }
+        };
+        solve(&self.pp, &mut bp);
+        matmul(
+            bl.as_mut(),
+            Accum::Add,
+            self.lp.as_ref(),
+            bp.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        solve(&self.ll, &mut bl);
+        matmul(
+            bp.as_mut(),
+            Accum::Add,
+            self.x.as_ref(),
+            bl.as_ref(),
+            -1.0,
+            Par::Seq,
+        );
+        for j in 0..c {
+            for (i, &k) in self.passive.iter().enumerate() {
+                m[(k, j)] = bp[(i, j)];
+            }
+            for (i, &k) in self.live.iter().enumerate() {
+                m[(k, j)] = bl[(i, j)];
+            }
+        }
+    }
+}
+
+impl InterfaceSolver {
+    /// Factorises the interface matrix of `a` (coupled unknowns at `at`, decoupled ones by
+    /// their `diagonal`; A's interface `values`) reduced onto its `live` unknowns.
+    pub(super) fn reduce(
+        &mut self,
+        a: &SparseMatrix,
+        at: Vec<usize>,
+        diagonal: Vec<f64>,
+        values: Vec<f64>,
+        live: &[bool],
+    ) {
+        let k = self.gamma.len();
+        let base = &mut self.base;
+        let is_live: Vec<bool> = base.kept.iter().map(|&i| live[i]).collect();
+        // (the full LU's storage is not needed while reduced, nor the last reduction
+        // once this one is made)
+        base.lu = DenseLu::default();
+        base.reduction = None;
+        let mut blocks = Blocks::new(&is_live);
+        for &(p, i, j) in &self.gamma_entries {
+            if at[i] != NONE && at[j] != NONE {
+                blocks.add(at[i], at[j], a.values[p]);
+            }
+        }
+        for b in &self.blocks {
+            for (lj, &gj) in b.gamma.iter().enumerate() {
+                if at[gj] == NONE {
+                    continue;
+                }
+                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
+                    if at[gi] != NONE {
+                        blocks.add(at[gi], at[gj], v);
+                    }
+                }
+            }
+        }
+        base.reduction = Some(blocks.finish(values));
+        base.at = at;
+        base.diagonal = diagonal;
+        self.factorised = base.reduction.as_ref().unwrap().values.clone();
+        self.z.clear(k);
+    }
+
+    /// The interface unknowns that carry contact terms or may soon: the multipliers, the
+    /// displacements with a nonzero entry to one, and their neighbours (a nonzero entry
+    /// between displacements: the next points to touch). All, when the multipliers are not
+    /// known.
+    pub(super) fn live_unknowns(&self, a: &SparseMatrix) -> Vec<bool> {
+        let k = self.gamma.len();
+        if self.np >= self.n {
+            return vec![true; k];
+        }
+        let multiplier = |i: usize| self.gamma[i] >= self.np;
+        let mut touching: Vec<bool> = (0..k).map(multiplier).collect();
+        for &(p, i, j) in &self.gamma_entries {
+            if a.values[p] != 0.0 && multiplier(i) != multiplier(j) {
+                touching[i] = true;
+                touching[j] = true;
+            }
+        }
+        let mut live = touching.clone();
+        for &(p, i, j) in &self.gamma_entries {
+            if a.values[p] != 0.0 && !multiplier(i) && !multiplier(j) && touching[j] {
+                live[i] = true;
+            }
+        }
+        live
+    }
+
+    /// Takes `a`'s interface matrix as the reduced one at hand with a new LU of its live
+    /// part, if it differs from the one reduced in live rows and columns only (the blocks
+    /// must be those factorised): true when done.
+    pub(super) fn live_refactored(&mut self, a: &SparseMatrix) -> bool {
+        let k = self.gamma.len();
+        let Some(red) = self.base.reduction.as_mut() else {
+            return false;
+        };
+        if red.values.len() != self.gamma_entries.len() {
+            return false;
+        }
+        let mut change = vec![];
+        for (&(p, i, j), &old) in self.gamma_entries.iter().zip(&red.values) {
+            let v = a.values[p];
+            if v.to_bits() == old.to_bits() {
+                continue;
+            }
+            let (ai, aj) = (self.base.at[i], self.base.at[j]);
+            if !v.is_finite() || ai == NONE || aj == NONE {
+                return false;
+            }
+            match (red.place(ai), red.place(aj)) {
+                (Place::Live(li), Place::Live(lj)) => change.push((li, lj, v - old)),
+                _ => return false,
+            }
+        }
+        red.refactor_live(&change);
+        self.factorised = self
+            .gamma_entries
+            .iter()
+            .map(|&(p, _, _)| a.values[p])
+            .collect();
+        self.vanished.clear();
+        self.update = None;
+        self.z.clear(k);
+        true
+    }
+}
