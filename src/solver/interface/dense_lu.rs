@@ -108,6 +108,11 @@ impl DenseLu {
         self.solve_with(rhs, par);
     }
 
+    /// As `solve`, with the parallelism `par`.
+    pub(super) fn solve_par(&self, rhs: &mut Mat<f64>, par: Par) {
+        self.solve_with(rhs, par);
+    }
+
     fn solve_with(&self, rhs: &mut Mat<f64>, par: Par) {
         let k = self.k;
         let lu = self.lu.as_ref();

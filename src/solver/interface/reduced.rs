@@ -9,7 +9,7 @@
 //!   T x = b:  y = T_PP⁻¹ b_P,  x_L = R⁻¹ (b_L − T_LP y),  x_P = y − X x_L,
 //! exact, as the LU of T. The first reduction costs about what that LU costs; a later
 //! matrix that differs from it in L × L only is R plus that difference, whose LU is of
-//! order |L| (about a tenth of the flops at |L| ≈ k/2).
+//! order |L| (at most an eighth of the flops: it is used when |L| ≤ k/2).
 
 use super::dense_lu::DenseLu;
 use super::{InterfaceSolver, NONE};
@@ -102,7 +102,8 @@ impl Blocks {
         let mut pp = DenseLu::default();
         pp.factor(self.pp);
         let mut x = self.pl;
-        pp.solve_many(&mut x);
+        // (X's columns on both cores, whatever p: this solve costs 2p²l, the most of any)
+        pp.solve_par(&mut x, par(self.passive.len() + self.live.len()));
         let mut r = self.ll;
         let l = r.nrows();
         matmul(
