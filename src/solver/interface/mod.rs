@@ -68,6 +68,12 @@ pub struct InterfaceSolver {
     vanished: Vec<(usize, usize, f64)>,
     z: ZColumns,
     update: Option<Update>,
+    /// LUs (whole or live) made with the bodies' factorisations kept since the bodies
+    /// were last factorised, and whether there were any in the interval before: the
+    /// reduction pays only where such LUs follow (frozen-body corrections, active-set
+    /// re-solves beyond a low-rank update), and costs memory (`reduced.rs`).
+    lus_with_bodies_kept: usize,
+    reduce_next: bool,
 }
 
 /// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
@@ -242,6 +248,8 @@ impl InterfaceSolver {
             vanished: vec![],
             z: ZColumns::default(),
             update: None,
+            lus_with_bodies_kept: 0,
+            reduce_next: false,
         })
     }
 
@@ -353,8 +361,18 @@ impl InterfaceSolver {
         // An active-set re-solve or a frozen-body correction: the LU at hand and a
         // low-rank change (`update.rs`), or the reduction at hand and a new LU of its live
         // part (`reduced.rs`).
-        if !refactored.contains(&true) && (self.updated(a) || self.live_refactored(a)) {
+        let bodies_kept = !refactored.contains(&true);
+        if bodies_kept && self.updated(a) {
             return Ok(());
+        }
+        if bodies_kept {
+            self.lus_with_bodies_kept += 1;
+            if self.live_refactored(a) {
+                return Ok(());
+            }
+        } else {
+            self.reduce_next = self.lus_with_bodies_kept > 0;
+            self.lus_with_bodies_kept = 0;
         }
         self.factorised.clear(); // until this factorisation is made
         self.vanished.clear();
@@ -395,11 +413,15 @@ impl InterfaceSolver {
         // Reduced onto its live unknowns when at least half of the interface is passive
         // (`reduced.rs`): a live LU then costs at most 1/8 of a whole one. (With fewer,
         // SSNP154 D mortar at 93k: 900 of 3064, the reduction's passes cost more than its
-        // live LUs saved.) Every multiplier is then kept (live), so that a contact point
-        // that closes changes the live part only.
+        // live LUs saved.) Only where LUs with the bodies kept are coming: this one is
+        // such an LU, or the last interval between the bodies' factorisations had some
+        // (SSNP154 A mortar at 98k has almost none: reduced at every factorisation, it
+        // took 5 % longer and 20 MiB more). Every multiplier is then kept (live), so that a
+        // contact point that closes changes the live part only.
         let live = self.live_unknowns(a);
         let passive = (0..k).filter(|&i| coupled[i] && !live[i]).count();
-        let reduce = passive >= MIN_PASSIVE && 2 * passive >= k;
+        let reduce =
+            passive >= MIN_PASSIVE && 2 * passive >= k && (bodies_kept || self.reduce_next);
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];
