@@ -416,17 +416,22 @@ impl InterfaceSolver {
         // live LUs saved.) Only where LUs with the bodies kept are coming: this one is
         // such an LU, or the last interval between the bodies' factorisations had some
         // (SSNP154 A mortar at 98k has almost none: reduced at every factorisation, it
-        // took 5 % longer and 20 MiB more). Every multiplier is then kept (live), so that a
-        // contact point that closes changes the live part only.
-        let live = self.live_unknowns(a);
+        // took 5 % longer and 20 MiB more). The live multipliers of open points (next to
+        // the contact zone) are then kept, so that such a point that closes changes the
+        // live part only.
+        let mut live = self.live_unknowns(a);
+        for i in 0..k {
+            // (a multiplier coupled to others only: mortar's friction rows)
+            live[i] |= coupled[i] && self.gamma[i] >= self.np;
+        }
         let passive = (0..k).filter(|&i| coupled[i] && !live[i]).count();
         let reduce =
-            passive >= MIN_PASSIVE && 2 * passive >= k && (bodies_kept || self.reduce_next);
+            passive >= MIN_PASSIVE && 4 * passive >= k && (bodies_kept || self.reduce_next);
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];
         for i in 0..k {
-            if coupled[i] || diagonal[i] == 0.0 || (reduce && self.gamma[i] >= self.np) {
+            if coupled[i] || diagonal[i] == 0.0 || (reduce && live[i]) {
                 at[i] = base.kept.len();
                 base.kept.push(i);
             }

@@ -32,10 +32,12 @@ pub(super) struct Reduction {
     /// positions among the coupled unknowns (`Factorised::kept`) of P and of L
     passive: Vec<usize>,
     live: Vec<usize>,
-    /// T_PP's LU, X = T_PP⁻¹ T_PL, T_LP, and R = T_LL − T_LP X at the values reduced
+    /// T_PP's LU, X = T_PP⁻¹ T_PL, T_LP, and R = T_LL − T_LP X at the values reduced.
+    /// T_LP is not kept where T_PP is symmetric and T_LP = T_PLᵀ (the passive unknowns
+    /// carry the bodies' terms alone): then T_LP T_PP⁻¹ = Xᵀ.
     pp: DenseLu,
     x: Mat<f64>,
-    lp: Mat<f64>,
+    lp: Option<Mat<f64>>,
     r: Mat<f64>,
     /// the LU of the live matrix: R plus the change of T_LL since the reduction
     ll: DenseLu,
@@ -99,6 +101,10 @@ impl Blocks {
     /// `values`.
     pub(super) fn finish(self, values: Vec<f64>) -> Reduction {
         let par = |k: usize| if k >= 1000 { Par::rayon(0) } else { Par::Seq };
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        let (p, l) = (self.passive.len(), self.live.len());
+        let symmetric = (0..p).all(|j| (j + 1..p).all(|i| same(self.pp[(i, j)], self.pp[(j, i)])))
+            && (0..p).all(|j| (0..l).all(|i| same(self.lp[(i, j)], self.pl[(j, i)])));
         let mut pp = DenseLu::default();
         pp.factor(self.pp);
         let mut x = self.pl;
@@ -114,6 +120,8 @@ impl Blocks {
             -1.0,
             par(l),
         );
+        // (dropped before R's copy is made: the reduction's peak)
+        let lp = (!symmetric).then_some(self.lp);
         let mut ll = DenseLu::default();
         ll.factor(r.clone());
         Reduction {
@@ -121,7 +129,7 @@ impl Blocks {
             live: self.live,
             pp,
             x,
-            lp: self.lp,
+            lp,
             r,
             ll,
             place: self.place,
@@ -133,6 +141,12 @@ impl Blocks {
 impl Reduction {
     pub(super) fn num_live(&self) -> usize {
         self.live.len()
+    }
+
+    /// Whether T_LP is kept (T not symmetric between the passive unknowns and the rest).
+    #[cfg(test)]
+    pub(super) fn keeps_lp(&self) -> bool {
+        self.lp.is_some()
     }
 
     /// Where the coupled unknown at position i sits.
@@ -164,15 +178,24 @@ impl Reduction {
                 lu.solve(v)
             }
         };
-        solve(&self.pp, &mut bp);
-        matmul(
-            bl.as_mut(),
-            Accum::Add,
-            self.lp.as_ref(),
-            bp.as_ref(),
-            -1.0,
-            Par::Seq,
-        );
+        match &self.lp {
+            // b_L − T_LP T_PP⁻¹ b_P
+            Some(lp) => {
+                solve(&self.pp, &mut bp);
+                matmul(bl.as_mut(), Accum::Add, lp, bp.as_ref(), -1.0, Par::Seq);
+            }
+            None => {
+                matmul(
+                    bl.as_mut(),
+                    Accum::Add,
+                    self.x.transpose(),
+                    bp.as_ref(),
+                    -1.0,
+                    Par::Seq,
+                );
+                solve(&self.pp, &mut bp);
+            }
+        }
         solve(&self.ll, &mut bl);
         matmul(
             bp.as_mut(),
@@ -236,17 +259,17 @@ impl InterfaceSolver {
         self.z.clear(k);
     }
 
-    /// The interface unknowns that carry contact terms or may soon: the multipliers, the
-    /// displacements with a nonzero entry to one, and their neighbours (a nonzero entry
-    /// between displacements: the next points to touch). All, when the multipliers are not
-    /// known.
+    /// The interface unknowns that carry contact terms or may soon: the displacements with
+    /// a nonzero entry to a multiplier, their neighbours (a nonzero entry between
+    /// displacements: the next points to touch), and the multipliers with an entry to
+    /// either. All, when the multipliers are not known.
     pub(super) fn live_unknowns(&self, a: &SparseMatrix) -> Vec<bool> {
         let k = self.gamma.len();
         if self.np >= self.n {
             return vec![true; k];
         }
         let multiplier = |i: usize| self.gamma[i] >= self.np;
-        let mut touching: Vec<bool> = (0..k).map(multiplier).collect();
+        let mut touching = vec![false; k];
         for &(p, i, j) in &self.gamma_entries {
             if a.values[p] != 0.0 && multiplier(i) != multiplier(j) {
                 touching[i] = true;
@@ -256,6 +279,13 @@ impl InterfaceSolver {
         let mut live = touching.clone();
         for &(p, i, j) in &self.gamma_entries {
             if a.values[p] != 0.0 && !multiplier(i) && !multiplier(j) && touching[j] {
+                live[i] = true;
+            }
+        }
+        // the multipliers of open points next to live displacements (an entry in the
+        // pattern, of any value): the next to close
+        for &(_, i, j) in &self.gamma_entries {
+            if multiplier(i) && !multiplier(j) && live[j] {
                 live[i] = true;
             }
         }

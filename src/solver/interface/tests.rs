@@ -234,6 +234,10 @@ fn two_chains_entries(len: usize) -> Vec<(usize, usize, f64)> {
 /// a non-symmetric friction-like coupling): an interface of 3 × `ties` unknowns. The ties
 /// in `open` are open: their multiplier's couplings zero, its row λ = 0.
 fn tied_chains(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
+    SparseMatrix::from_entries(2 * len + ties, &tied_chains_entries(len, ties, open))
+}
+
+fn tied_chains_entries(len: usize, ties: usize, open: &[usize]) -> Vec<(usize, usize, f64)> {
     let mut e = two_chains_entries(len);
     let m = 2 * len;
     for k in 0..ties {
@@ -243,7 +247,7 @@ fn tied_chains(len: usize, ties: usize, open: &[usize]) -> SparseMatrix {
         e.push((m + k, m + k, 3.0 * (1.0 - w)));
         e.extend([(a, b, 0.3 * w), (b, a, -0.2 * w)]);
     }
-    SparseMatrix::from_entries(2 * len + ties, &e)
+    e
 }
 
 /// A re-solve with the ties `open` changed since the first LU: as exact as a new LU, and
@@ -375,8 +379,9 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     let err = solve_error(&mut s, &first);
     assert!(err < 1e-12, "first factorisation: max error {err}");
     let red = s.base.reduction.as_ref().expect("reduced");
-    // live: the tied unknowns of ties 35–39 (35 next to 36) and every multiplier
-    assert_eq!(red.num_live(), 2 * 5 + ties);
+    // live: the tied unknowns and multipliers of ties 35–39 (35 next to 36); the other
+    // open ties' multipliers are solved on their own
+    assert_eq!(red.num_live(), 3 * 5);
     let reduced_at = red.values.clone();
     // ties 35 and 37 swap: live rows only
     let swapped: Vec<usize> = (0..35).chain([37]).collect();
@@ -412,4 +417,41 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     s.lus_with_bodies_kept = 1;
     assert!(solve_error(&mut s, &mostly_closed) < 1e-12);
     assert!(s.base.reduction.is_none());
+}
+
+#[test]
+fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
+    // T made unsymmetric among the passive unknowns (ties 3 and 4) and between passive and
+    // live ones (ties 34 and 35), on one side only: the reduction keeps T_LP (the
+    // symmetric form does without); the live part changes as above.
+    let (len, ties) = (400, 40);
+    let with_skew = |open: &[usize]| {
+        let mut e = tied_chains_entries(len, ties, open);
+        e.push((len - 4, len - 5, 0.05));
+        e.push((len - 1 - 34, len - 1 - 35, 0.07)); // passive row (tie 34), live column (35)
+        SparseMatrix::from_entries(2 * len + ties, &e)
+    };
+    let first = with_skew(&(0..36).collect::<Vec<_>>());
+    let t = transpose_positions(&first);
+    let in_gamma = interface_of(&first, 2 * len, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default())
+        .unwrap()
+        .with_multipliers_from(2 * len);
+    s.lus_with_bodies_kept = 1;
+    let err = solve_error(&mut s, &first);
+    assert!(err < 1e-12, "first factorisation: max error {err}");
+    assert!(s.base.reduction.as_ref().expect("reduced").keeps_lp());
+    let a = with_skew(&(0..35).chain([37]).collect::<Vec<_>>());
+    let err = solve_error(&mut s, &a);
+    assert!(err < 1e-12, "live change: max error {err}");
+    assert!(s.update.is_none());
+    // and the chains alone are symmetric there: T_LP is not kept
+    let b = tied_chains(len, ties, &(0..36).collect::<Vec<_>>());
+    let in_gamma = interface_of(&b, 2 * len, &t).unwrap();
+    let mut s = InterfaceSolver::new(&b, in_gamma, Storage::default())
+        .unwrap()
+        .with_multipliers_from(2 * len);
+    s.lus_with_bodies_kept = 1;
+    assert!(solve_error(&mut s, &b) < 1e-12);
+    assert!(!s.base.reduction.as_ref().expect("reduced").keeps_lp());
 }
