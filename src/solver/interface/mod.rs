@@ -73,7 +73,7 @@ pub struct InterfaceSolver {
     /// reduction pays only where such LUs follow (frozen-body corrections, active-set
     /// re-solves beyond a low-rank update), and costs memory (`reduced.rs`).
     lus_with_bodies_kept: usize,
-    reduce_next: bool,
+    lus_last_interval: usize,
 }
 
 /// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
@@ -249,7 +249,7 @@ impl InterfaceSolver {
             z: ZColumns::default(),
             update: None,
             lus_with_bodies_kept: 0,
-            reduce_next: false,
+            lus_last_interval: 0,
         })
     }
 
@@ -371,7 +371,7 @@ impl InterfaceSolver {
                 return Ok(());
             }
         } else {
-            self.reduce_next = self.lus_with_bodies_kept > 0;
+            self.lus_last_interval = self.lus_with_bodies_kept;
             self.lus_with_bodies_kept = 0;
         }
         self.factorised.clear(); // until this factorisation is made
@@ -410,23 +410,34 @@ impl InterfaceSolver {
                 "the system matrix is singular: non-finite interface matrix",
             ));
         }
-        // Reduced onto its live unknowns when at least half of the interface is passive
-        // (`reduced.rs`): a live LU then costs at most 1/8 of a whole one. (With fewer,
-        // SSNP154 D mortar at 93k: 900 of 3064, the reduction's passes cost more than its
-        // live LUs saved.) Only where LUs with the bodies kept are coming: this one is
-        // such an LU, or the last interval between the bodies' factorisations had some
+        // Reduced onto its live unknowns (`reduced.rs`) where that is predicted to cost
+        // fewer flops than whole LUs, counting the LUs with the bodies kept still to come
         // (SSNP154 A mortar at 98k has almost none: reduced at every factorisation, it
-        // took 5 % longer and 20 MiB more). The live multipliers of open points (next to
-        // the contact zone) are then kept, so that such a point that closes changes the
-        // live part only.
+        // took 5 % longer and 20 MiB more; D mortar at 266k reduced with one to come
+        // took 0.50 s against 0.30 s for a whole LU, as the flops predict), and with at
+        // least a quarter of the interface passive. The multipliers of open points next
+        // to the contact zone are then kept, so that such a point that closes changes
+        // the live part only.
         let mut live = self.live_unknowns(a);
         for i in 0..k {
             // (a multiplier coupled to others only: mortar's friction rows)
             live[i] |= coupled[i] && self.gamma[i] >= self.np;
         }
         let passive = (0..k).filter(|&i| coupled[i] && !live[i]).count();
-        let reduce =
-            passive >= MIN_PASSIVE && 4 * passive >= k && (bodies_kept || self.reduce_next);
+        let whole = (0..k).filter(|&i| coupled[i] || diagonal[i] == 0.0).count();
+        let reduced = (0..k)
+            .filter(|&i| coupled[i] || diagonal[i] == 0.0 || live[i])
+            .count();
+        // (the LUs with the bodies kept still to come: as many as in the last interval,
+        // at least this one when it is such an LU)
+        let coming = if bodies_kept {
+            self.lus_last_interval.max(1)
+        } else {
+            self.lus_last_interval
+        };
+        let reduce = passive >= MIN_PASSIVE
+            && 4 * passive >= k
+            && reduced::pays(whole, passive, reduced - passive, coming);
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];
