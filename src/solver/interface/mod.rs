@@ -32,7 +32,6 @@ use crate::error::{Error, Result};
 use block::Block;
 use dense_lu::DenseLu;
 use rayon::prelude::*;
-use reduced::MIN_PASSIVE;
 use update::{Factorised, Update, ZColumns};
 
 /// Larger interfaces go to the saddle-point LDLᵀ (GMRES on a symmetric approximation).
@@ -410,34 +409,8 @@ impl InterfaceSolver {
                 "the system matrix is singular: non-finite interface matrix",
             ));
         }
-        // Reduced onto its live unknowns (`reduced.rs`) where that is predicted to cost
-        // fewer flops than whole LUs, counting the LUs with the bodies kept still to come
-        // (SSNP154 A mortar at 98k has almost none: reduced at every factorisation, it
-        // took 5 % longer and 20 MiB more; D mortar at 266k reduced with one to come
-        // took 0.50 s against 0.30 s for a whole LU, as the flops predict), and with at
-        // least a quarter of the interface passive. The multipliers of open points next
-        // to the contact zone are then kept, so that such a point that closes changes
-        // the live part only.
-        let mut live = self.live_unknowns(a);
-        for i in 0..k {
-            // (a multiplier coupled to others only: mortar's friction rows)
-            live[i] |= coupled[i] && self.gamma[i] >= self.np;
-        }
-        let passive = (0..k).filter(|&i| coupled[i] && !live[i]).count();
-        let whole = (0..k).filter(|&i| coupled[i] || diagonal[i] == 0.0).count();
-        let reduced = (0..k)
-            .filter(|&i| coupled[i] || diagonal[i] == 0.0 || live[i])
-            .count();
-        // (the LUs with the bodies kept still to come: as many as in the last interval,
-        // at least this one when it is such an LU)
-        let coming = if bodies_kept {
-            self.lus_last_interval.max(1)
-        } else {
-            self.lus_last_interval
-        };
-        let reduce = passive >= MIN_PASSIVE
-            && 4 * passive >= k
-            && reduced::pays(whole, passive, reduced - passive, coming);
+        // Reduced onto its live unknowns where that pays (`reduced.rs`).
+        let (reduce, live) = self.reduction_wanted(a, &coupled, &diagonal, bodies_kept);
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];

@@ -355,6 +355,18 @@ fn a_change_in_rows_of_unlike_sizes_still_updates_the_interface_lu() {
     assert!(s.update.is_some(), "the first LU serves with an update");
 }
 
+/// An interface solver of `a` (primal unknowns before `np`) that knows its multipliers,
+/// as after `lus` LUs with the bodies kept (the reduction pays only where such follow).
+fn knowing_multipliers(a: &SparseMatrix, np: usize, lus: usize) -> InterfaceSolver {
+    let t = transpose_positions(a);
+    let in_gamma = interface_of(a, np, &t).expect("small interface");
+    let mut s = InterfaceSolver::new(a, in_gamma, Storage::default())
+        .unwrap()
+        .with_multipliers_from(np);
+    s.lus_with_bodies_kept = lus;
+    s
+}
+
 #[test]
 fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     // Most ties open: their tied unknowns carry no contact term and are reduced away;
@@ -364,18 +376,11 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     let (len, ties) = (400, 40);
     let open: Vec<usize> = (0..36).collect();
     let first = tied_chains(len, ties, &open);
-    let t = transpose_positions(&first);
-    let in_gamma = interface_of(&first, 2 * len, &t).expect("small interface");
-    let mut s = InterfaceSolver::new(&first, in_gamma.clone(), Storage::default())
-        .unwrap()
-        .with_multipliers_from(2 * len);
     // (a first factorisation is reduced only after LUs with the bodies kept)
+    let mut s = knowing_multipliers(&first, 2 * len, 0);
     assert!(solve_error(&mut s, &first) < 1e-12);
     assert!(s.base.reduction.is_none(), "no LU with the bodies kept yet");
-    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default())
-        .unwrap()
-        .with_multipliers_from(2 * len);
-    s.lus_with_bodies_kept = 1;
+    let mut s = knowing_multipliers(&first, 2 * len, 1);
     let err = solve_error(&mut s, &first);
     assert!(err < 1e-12, "first factorisation: max error {err}");
     let red = s.base.reduction.as_ref().expect("reduced");
@@ -404,17 +409,14 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     assert!(s.update.is_none());
     assert_ne!(s.base.reduction.as_ref().unwrap().values, reduced_at);
     // without the multipliers known, never reduced
+    let t = transpose_positions(&first);
     let in_gamma = interface_of(&first, 2 * len, &t).unwrap();
     let mut whole = InterfaceSolver::new(&first, in_gamma, Storage::default()).unwrap();
     assert!(solve_error(&mut whole, &first) < 1e-12);
     assert!(whole.base.reduction.is_none());
     // fewer than half passive: not reduced
     let mostly_closed = tied_chains(len, ties, &[0, 1, 2, 3, 4, 5]);
-    let in_gamma = interface_of(&mostly_closed, 2 * len, &t).unwrap();
-    let mut s = InterfaceSolver::new(&mostly_closed, in_gamma, Storage::default())
-        .unwrap()
-        .with_multipliers_from(2 * len);
-    s.lus_with_bodies_kept = 1;
+    let mut s = knowing_multipliers(&mostly_closed, 2 * len, 1);
     assert!(solve_error(&mut s, &mostly_closed) < 1e-12);
     assert!(s.base.reduction.is_none());
 }
@@ -432,12 +434,7 @@ fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
         SparseMatrix::from_entries(2 * len + ties, &e)
     };
     let first = with_skew(&(0..36).collect::<Vec<_>>());
-    let t = transpose_positions(&first);
-    let in_gamma = interface_of(&first, 2 * len, &t).expect("small interface");
-    let mut s = InterfaceSolver::new(&first, in_gamma, Storage::default())
-        .unwrap()
-        .with_multipliers_from(2 * len);
-    s.lus_with_bodies_kept = 1;
+    let mut s = knowing_multipliers(&first, 2 * len, 1);
     let err = solve_error(&mut s, &first);
     assert!(err < 1e-12, "first factorisation: max error {err}");
     assert!(s.base.reduction.as_ref().expect("reduced").keeps_lp());
@@ -447,11 +444,7 @@ fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
     assert!(s.update.is_none());
     // and the chains alone are symmetric there: T_LP is not kept
     let b = tied_chains(len, ties, &(0..36).collect::<Vec<_>>());
-    let in_gamma = interface_of(&b, 2 * len, &t).unwrap();
-    let mut s = InterfaceSolver::new(&b, in_gamma, Storage::default())
-        .unwrap()
-        .with_multipliers_from(2 * len);
-    s.lus_with_bodies_kept = 1;
+    let mut s = knowing_multipliers(&b, 2 * len, 1);
     assert!(solve_error(&mut s, &b) < 1e-12);
     assert!(!s.base.reduction.as_ref().expect("reduced").keeps_lp());
 }
