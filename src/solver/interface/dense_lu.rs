@@ -109,11 +109,7 @@ impl DenseLu {
     }
 
     /// As `solve`, with the parallelism `par`.
-    pub(super) fn solve_par(&self, rhs: &mut Mat<f64>, par: Par) {
-        self.solve_with(rhs, par);
-    }
-
-    fn solve_with(&self, rhs: &mut Mat<f64>, par: Par) {
+    pub(super) fn solve_with(&self, rhs: &mut Mat<f64>, par: Par) {
         let k = self.k;
         let lu = self.lu.as_ref();
         debug_assert_eq!(lu.nrows(), k);

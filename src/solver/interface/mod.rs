@@ -68,9 +68,9 @@ pub struct InterfaceSolver {
     z: ZColumns,
     update: Option<Update>,
     /// LUs (whole or live) made with the bodies' factorisations kept since the bodies
-    /// were last factorised, and whether there were any in the interval before: the
-    /// reduction pays only where such LUs follow (frozen-body corrections, active-set
-    /// re-solves beyond a low-rank update), and costs memory (`reduced.rs`).
+    /// were last factorised, and in the interval before: the reduction pays only where
+    /// such LUs follow (frozen-body corrections, active-set re-solves beyond a low-rank
+    /// update), and costs memory (`reduced.rs`).
     lus_with_bodies_kept: usize,
     lus_last_interval: usize,
 }
@@ -329,6 +329,30 @@ impl InterfaceSolver {
         self.factorised = values;
     }
 
+    /// Calls `f(i, j, v)` for every term of the interface matrix of `a` (interface row,
+    /// column, value): A's entries in Γ × Γ, then the blocks' Schur complements column by
+    /// column (each entry's sum in the same order at every visit).
+    fn visit_interface(&self, a: &SparseMatrix, mut f: impl FnMut(usize, usize, f64)) {
+        for &(p, i, j) in &self.gamma_entries {
+            f(i, j, a.values[p]);
+        }
+        for b in &self.blocks {
+            for (lj, &gj) in b.gamma.iter().enumerate() {
+                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
+                    f(gi, gj, v);
+                }
+            }
+        }
+    }
+
+    /// A's values at the interface entries (in their order).
+    fn interface_values(&self, a: &SparseMatrix) -> Vec<f64> {
+        self.gamma_entries
+            .iter()
+            .map(|&(p, _, _)| a.values[p])
+            .collect()
+    }
+
     /// The unknowns from `np` on are multipliers: the interface matrix may then be reduced
     /// onto the unknowns that carry contact terms (`reduced.rs`).
     pub fn with_multipliers_from(mut self, np: usize) -> Self {
@@ -394,16 +418,7 @@ impl InterfaceSolver {
                 coupled[j] = true;
             }
         };
-        for &(p, i, j) in &self.gamma_entries {
-            look(i, j, a.values[p]);
-        }
-        for b in &self.blocks {
-            for (lj, &gj) in b.gamma.iter().enumerate() {
-                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
-                    look(gi, gj, v);
-                }
-            }
-        }
+        self.visit_interface(a, &mut look);
         if !finite {
             return Err(Error::solve(
                 "the system matrix is singular: non-finite interface matrix",
@@ -411,6 +426,7 @@ impl InterfaceSolver {
         }
         // Reduced onto its live unknowns where that pays (`reduced.rs`).
         let (reduce, live) = self.reduction_wanted(a, &coupled, &diagonal, bodies_kept);
+        let values = self.interface_values(a);
         let base = &mut self.base;
         base.kept.clear();
         let mut at = vec![NONE; k];
@@ -420,11 +436,6 @@ impl InterfaceSolver {
                 base.kept.push(i);
             }
         }
-        let values = self
-            .gamma_entries
-            .iter()
-            .map(|&(p, _, _)| a.values[p])
-            .collect();
         if reduce {
             self.reduce(a, at, diagonal, values, &live);
             return Ok(());
@@ -433,25 +444,12 @@ impl InterfaceSolver {
         // The interface matrix of the kept unknowns, in the storage of the last LU (no
         // fresh pages to fault in at every Newton iteration).
         let mut t = base.lu.take_storage(base.kept.len(), k);
-        for &(p, i, j) in &self.gamma_entries {
+        self.visit_interface(a, |i, j, v| {
             if at[i] != NONE && at[j] != NONE {
-                t[(at[i], at[j])] += a.values[p];
+                t[(at[i], at[j])] += v;
             }
-        }
-        // (column by column: both matrices are stored by columns)
-        for b in &self.blocks {
-            for (lj, &gj) in b.gamma.iter().enumerate() {
-                if at[gj] == NONE {
-                    continue;
-                }
-                let column = t.col_as_slice_mut(at[gj]);
-                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
-                    if at[gi] != NONE {
-                        column[at[gi]] += v;
-                    }
-                }
-            }
-        }
+        });
+        let base = &mut self.base;
         base.lu.factor(t);
         base.at = at;
         base.diagonal = diagonal;

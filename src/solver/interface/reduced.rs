@@ -7,9 +7,9 @@
 //! displacements that share an entry with one, and their neighbours),
 //!   T = [T_PP T_PL; T_LP T_LL],  X = T_PP⁻¹ T_PL,  R = T_LL − T_LP X,
 //!   T x = b:  y = T_PP⁻¹ b_P,  x_L = R⁻¹ (b_L − T_LP y),  x_P = y − X x_L,
-//! exact, as the LU of T. The first reduction costs about what that LU costs; a later
-//! matrix that differs from it in L × L only is R plus that difference, whose LU is of
-//! order |L| (at most an eighth of the flops: it is used when |L| ≤ k/2).
+//! exact, as the LU of T. A reduction costs at least what that LU costs; a later matrix
+//! that differs from it in L × L only is R plus that difference, whose LU is of order |L|
+//! (`pays` decides where the one pays for the other).
 
 use super::dense_lu::DenseLu;
 use super::{InterfaceSolver, NONE};
@@ -142,9 +142,8 @@ impl Blocks {
         pp.factor(self.pp);
         let mut x = self.pl;
         // (X's columns on both cores, whatever p: this solve costs 2p²l, the most of any)
-        pp.solve_par(&mut x, par(self.passive.len() + self.live.len()));
+        pp.solve_with(&mut x, par(p + l));
         let mut r = self.ll;
-        let l = r.nrows();
         matmul(
             r.as_mut(),
             Accum::Add,
@@ -261,30 +260,18 @@ impl InterfaceSolver {
         live: &[bool],
     ) {
         let k = self.gamma.len();
-        let base = &mut self.base;
-        let is_live: Vec<bool> = base.kept.iter().map(|&i| live[i]).collect();
         // (the full LU's storage is not needed while reduced, nor the last reduction
         // once this one is made)
-        base.lu = DenseLu::default();
-        base.reduction = None;
+        self.base.lu = DenseLu::default();
+        self.base.reduction = None;
+        let is_live: Vec<bool> = self.base.kept.iter().map(|&i| live[i]).collect();
         let mut blocks = Blocks::new(&is_live);
-        for &(p, i, j) in &self.gamma_entries {
+        self.visit_interface(a, |i, j, v| {
             if at[i] != NONE && at[j] != NONE {
-                blocks.add(at[i], at[j], a.values[p]);
+                blocks.add(at[i], at[j], v);
             }
-        }
-        for b in &self.blocks {
-            for (lj, &gj) in b.gamma.iter().enumerate() {
-                if at[gj] == NONE {
-                    continue;
-                }
-                for (&gi, v) in b.gamma.iter().zip(b.schur_column(lj)) {
-                    if at[gi] != NONE {
-                        blocks.add(at[gi], at[gj], v);
-                    }
-                }
-            }
-        }
+        });
+        let base = &mut self.base;
         base.reduction = Some(blocks.finish(values));
         base.at = at;
         base.diagonal = diagonal;
@@ -391,11 +378,7 @@ impl InterfaceSolver {
             }
         }
         red.refactor_live(&change);
-        self.factorised = self
-            .gamma_entries
-            .iter()
-            .map(|&(p, _, _)| a.values[p])
-            .collect();
+        self.factorised = self.interface_values(a);
         self.vanished.clear();
         self.update = None;
         self.z.clear(k);

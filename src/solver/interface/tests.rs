@@ -414,7 +414,7 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     let mut whole = InterfaceSolver::new(&first, in_gamma, Storage::default()).unwrap();
     assert!(solve_error(&mut whole, &first) < 1e-12);
     assert!(whole.base.reduction.is_none());
-    // fewer than half passive: not reduced
+    // fewer than a quarter passive: not reduced
     let mostly_closed = tied_chains(len, ties, &[0, 1, 2, 3, 4, 5]);
     let mut s = knowing_multipliers(&mostly_closed, 2 * len, 1);
     assert!(solve_error(&mut s, &mostly_closed) < 1e-12);
