@@ -501,6 +501,7 @@ pub fn build_pairs(case: &CaseFile, mesh: &Mesh) -> Result<Vec<Box<dyn ContactPa
             initial_gap: c.initial_gap,
             friction: (c.friction > 0.0).then_some(c.friction),
             rho_f: c.rho_f.unwrap_or(60.0 / h_min),
+            trial_stiffness: e_min / h_min,
             friction_excluded,
             tangential_penalty: c.tangential_penalty,
             smoothed_normal: match c.master_normal.as_deref() {

@@ -468,6 +468,8 @@ pub struct ContactSpec {
     #[serde(default)]
     pub friction: f64,
     /// Friction augmentation coefficient (1 / length); default from the model: 60 / h.
+    /// Raised at points of low pressure p so that μ p ρ_f is at least E / (10 h)
+    /// (`contact::friction::balanced_rho_f`).
     #[serde(default)]
     pub rho_f: Option<f64>,
     /// Node groups excluded from friction only (e.g. a node on a symmetry axis).

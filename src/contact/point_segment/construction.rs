@@ -187,6 +187,7 @@ impl PointToSegment {
         }
         let n_mult = mult_nodes.len();
         let n_points = points.len();
+        let rho_f = opts.rho_f;
         let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
         let mut pair = PointToSegment {
             slave,
@@ -210,6 +211,7 @@ impl PointToSegment {
             law: vec![None; n_points],
             switches: vec![0; n_points],
             trial_scale: vec![1.0; n_points],
+            balanced_rho_f: vec![rho_f; n_points],
         };
         // (every point inactive until `initialise`)
         pair.save_start();

@@ -122,9 +122,10 @@ impl PointToSegment {
     }
 
     /// Point i's Coulomb branch at (u, λ) as `friction_point` takes it (None: no friction
-    /// there), given its geometry, its λ and the floor below which |λ| carries none; a
-    /// point whose slip keeps reversing its direction in this step gets a smaller ρ_f
-    /// (`friction::count_reversal`).
+    /// there), given its geometry, its λ and the floor below which |λ| carries none, with
+    /// its ρ_f balanced on its pressure there (kept until the next update, so that the
+    /// residual and its tangent see one ρ_f); a point whose slip keeps reversing its
+    /// direction in this step gets a smaller ρ_f (`friction::count_reversal`).
     pub(super) fn count_friction_switch(
         &mut self,
         mesh: &Mesh,
@@ -142,14 +143,21 @@ impl PointToSegment {
             let mnodes = mesh.cell_nodes(self.master.cells[p.master]);
             let big_l;
             (dw, big_l) = self.slip_and_semi_multiplier(e, snodes, mnodes, u, lam);
-            let rho_f = self.opts.rho_f * self.trial_scale[i];
+            // (λ is a pressure, or for node-to-segment the node's force: over its share)
+            let share: f64 = (e.ns.iter().zip(snodes))
+                .map(|(v, n)| v * self.node_weight[self.mult_of[n]])
+                .sum();
+            let (mu, stiffness) = (self.opts.friction.unwrap_or(0.0), self.opts.trial_stiffness);
+            self.balanced_rho_f[i] =
+                friction::balanced_rho_f(self.opts.rho_f, stiffness, mu, -lp / share);
+            let rho_f = self.balanced_rho_f[i] * self.trial_scale[i];
             Some(friction::state(big_l, dw, rho_f).1)
         };
         if let (Some(friction::State::Slip(a)), Some(friction::State::Slip(b))) = (self.law[i], law)
         {
             if a != b {
                 let (switches, scale) = (&mut self.switches[i], &mut self.trial_scale[i]);
-                friction::count_reversal(switches, scale, self.opts.rho_f, dw);
+                friction::count_reversal(switches, scale, self.balanced_rho_f[i], dw);
             }
         }
         self.law[i] = law;

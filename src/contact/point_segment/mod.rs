@@ -80,8 +80,13 @@ pub struct Options {
     pub projection_tolerance: f64,
     /// Coulomb friction coefficient (None: frictionless).
     pub friction: Option<f64>,
-    /// Friction augmentation ρ_f (the reference's COEF_FROT, 100, per unit length).
+    /// Friction augmentation ρ_f (the reference's COEF_FROT, 100, per unit length), raised
+    /// at points of low pressure (`trial_stiffness`).
     pub rho_f: f64,
+    /// The bodies' stiffness over the cell size, E/h (stress per length): the scale a
+    /// point's friction trial is raised to where its pressure is low
+    /// (`friction::balanced_rho_f`; 0: the pair's ρ_f at every point).
+    pub trial_stiffness: f64,
     /// Slave nodes excluded from friction only (the reference's SANS_GROUP_NO_FR).
     pub friction_excluded: Vec<usize>,
     /// Node-to-segment tangential penalty k_t (a stick stiffness, force per length): a
@@ -107,6 +112,7 @@ impl Default for Options {
             projection_tolerance: 0.5,
             friction: None,
             rho_f: 100.0,
+            trial_stiffness: 0.0,
             friction_excluded: vec![],
             tangential_penalty: None,
             smoothed_normal: true,
@@ -190,11 +196,14 @@ pub struct PointToSegment {
     /// force a tangential penalty starts the step from).
     q_start: Vec<f64>,
     /// Per point, with friction: its Coulomb branch at the last status update (None: no
-    /// friction there), how often its slip reversed its direction in this step, and the
-    /// factor on ρ_f of its trial (cut where it keeps reversing: `friction::count_reversal`).
+    /// friction there), how often its slip reversed its direction in this step, the
+    /// factor on ρ_f of its trial (cut where it keeps reversing: `friction::count_reversal`),
+    /// and its ρ_f balanced on its pressure at the last status update
+    /// (`friction::balanced_rho_f`).
     law: Vec<Option<super::friction::State>>,
     switches: Vec<u32>,
     trial_scale: Vec<f64>,
+    balanced_rho_f: Vec<f64>,
 }
 
 /// Coefficients of a linear form over dofs: (dof, value).
@@ -204,7 +213,7 @@ type OwnedCoefs = Vec<(usize, f64)>;
 /// What the friction term of one point needs from the normal one.
 struct FrictionPoint<'a> {
     mu: f64,
-    /// the point's ρ_f (the pair's, times its trial factor)
+    /// the point's ρ_f (balanced on its pressure, times its trial factor)
     rho_f: f64,
     /// |λ| below which a point carries no friction (1e-8 of the largest |λ|)
     lambda_floor: f64,

@@ -193,7 +193,7 @@ impl PointToSegment {
                 let fp = FrictionPoint {
                     lambda_floor,
                     mu,
-                    rho_f: self.opts.rho_f * self.trial_scale[i],
+                    rho_f: self.balanced_rho_f[i] * self.trial_scale[i],
                     w,
                     lp,
                     chi,
