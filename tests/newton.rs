@@ -238,3 +238,65 @@ fn a_body_held_by_contact_alone_is_held_when_loaded_after_resting_unloaded() {
         );
     }
 }
+
+/// R(x, t) = x³ − t, a stiffening response: the first step's increment extrapolated to the
+/// second step overshoots (x = 2 · 0.5^⅓, R = 3) past the last state's residual (0.5).
+struct Cubic {
+    k: tribo::assembly::matrix::SparseMatrix,
+}
+
+impl tribo::solver::newton::Nonlinear for Cubic {
+    fn num_unknowns(&self) -> usize {
+        1
+    }
+    fn unknowns(&self) -> Vec<f64> {
+        vec![0.0]
+    }
+    fn evaluate(
+        &mut self,
+        x: &[f64],
+        t: f64,
+        r: &mut [f64],
+        _tangent: bool,
+    ) -> tribo::error::Result<tribo::solver::problem::Norms> {
+        r[0] = x[0].powi(3) - t;
+        // (at x = 0 the tangent 3x² vanishes: a floor keeps the first step solvable)
+        self.k.values[0] = (3.0 * x[0] * x[0]).max(0.3);
+        Ok(tribo::solver::problem::Norms {
+            residual: r[0].abs(),
+            reference: 1.0,
+            constraint: 0.0,
+        })
+    }
+    fn matrix(&self) -> &tribo::assembly::matrix::SparseMatrix {
+        &self.k
+    }
+}
+
+#[test]
+fn a_step_starts_from_the_linearised_response_when_the_extrapolation_overshoots() {
+    let mut p = Cubic {
+        k: tribo::assembly::matrix::SparseMatrix::from_entries(1, &[(0, 0, 1.0)]),
+    };
+    let settings = NewtonSettings {
+        steps: 2,
+        tolerance: 1e-12,
+        max_iterations: 30,
+        kinematic_continuation: false,
+        ..Default::default()
+    };
+    let report = solve(&mut p, &settings, Method::Lu).unwrap();
+    let x1 = 0.5f64.cbrt();
+    // the response linearised about the first step's end: x1 + 0.5 / (3 x1²)
+    let predicted = x1 + 0.5 / (3.0 * x1 * x1);
+    let start = report.steps[1].iterations[0].relative_residual;
+    println!("second step from residual {start:e}");
+    // (to the first step's tolerance and the round-off of the predictor's load derivative,
+    // a difference over a millionth of the step: ~1e-10; the last state has 0.5, the
+    // extrapolation 3)
+    assert!(
+        (start - (predicted.powi(3) - 1.0).abs()).abs() < 1e-8,
+        "the second step started from residual {start}, not the linearised response's {}",
+        predicted.powi(3) - 1.0
+    );
+}
