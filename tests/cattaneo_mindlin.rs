@@ -324,7 +324,7 @@ fn point_to_segment_answer_does_not_depend_on_the_friction_augmentation() {
 /// The other end: ρ_f = 1, near 1/1000 of the default. With one ρ_f for the pair a sticking
 /// point's trial stiffness μ p ρ_f falls with its pressure, and the trial sees stick where
 /// the bodies slip; each point's ρ_f is raised so that μ p ρ_f is at least E/(10 h)
-/// (`friction::balanced_rho_f`): 37 and 46 iterations, as with the default. Before,
+/// (`friction::balanced_rho_f`): 39 and 45 iterations, as with the default. Before,
 /// the linear cells took 93 and the quadratic ones failed at t = 0.28 after 8 step cuts.
 #[test]
 fn node_to_segment_with_a_far_too_small_friction_augmentation() {

@@ -84,6 +84,17 @@ impl PointToSegment {
         }
     }
 
+    /// The largest contact pressure over the slave nodes (λ over what turns it into one).
+    pub(super) fn peak_pressure(&self, lam: &[f64]) -> f64 {
+        let nm = self.mult_nodes.len();
+        (lam[..nm]
+            .iter()
+            .zip(&self.node_weight)
+            .zip(&self.weightless))
+        .filter(|(_, &weightless)| !weightless)
+        .fold(0.0f64, |m, ((l, w), _)| m.max(-l / w))
+    }
+
     /// |λ| below which a point carries no friction: 1e-8 of the largest normal multiplier.
     pub(super) fn friction_floor(&self, lam: &[f64]) -> f64 {
         let nm = self.mult_nodes.len();
@@ -122,8 +133,8 @@ impl PointToSegment {
     }
 
     /// Point i's Coulomb branch at (u, λ) as `friction_point` takes it (None: no friction
-    /// there), given its geometry, its λ and the floor below which |λ| carries none, with
-    /// its ρ_f balanced on its pressure there (kept until the next update, so that the
+    /// there), given its geometry, its λ, the floor below which |λ| carries none and the
+    /// pair's peak pressure, with its ρ_f balanced on its pressure there (kept until the next update, so that the
     /// residual and its tangent see one ρ_f); a point whose slip keeps reversing its
     /// direction in this step gets a smaller ρ_f (`friction::count_reversal`).
     pub(super) fn count_friction_switch(
@@ -132,7 +143,7 @@ impl PointToSegment {
         u: &[f64],
         lam: &[f64],
         i: usize,
-        (e, lp, lambda_floor): (&Eval, f64, f64),
+        (e, lp, lambda_floor, peak): (&Eval, f64, f64, f64),
     ) {
         let p = &self.points[i];
         let mut dw = 0.0;
@@ -149,7 +160,7 @@ impl PointToSegment {
                 .sum();
             let (mu, stiffness) = (self.opts.friction.unwrap_or(0.0), self.opts.trial_stiffness);
             self.balanced_rho_f[i] =
-                friction::balanced_rho_f(self.opts.rho_f, stiffness, mu, -lp / share);
+                friction::balanced_rho_f(self.opts.rho_f, stiffness, mu, -lp / share, peak);
             let rho_f = self.balanced_rho_f[i] * self.trial_scale[i];
             Some(friction::state(big_l, dw, rho_f).1)
         };

@@ -71,6 +71,7 @@ impl PointToSegment {
         let mut changes = 0;
         self.changed.clear();
         let lambda_floor = self.friction_floor(lam);
+        let peak = self.peak_pressure(lam);
         let count_switches = self.opts.friction.is_some() && self.opts.tangential_penalty.is_none();
         for i in 0..self.points.len() {
             let e = self.eval(mesh, u, i);
@@ -97,7 +98,7 @@ impl PointToSegment {
                     .push(mesh.cell_nodes(self.slave.cells[cell])[a]);
             }
             if count_switches {
-                self.count_friction_switch(mesh, u, lam, i, (&e, lp, lambda_floor));
+                self.count_friction_switch(mesh, u, lam, i, (&e, lp, lambda_floor, peak));
             }
         }
         changes
