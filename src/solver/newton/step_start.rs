@@ -84,8 +84,7 @@ pub(super) fn choose_start(
     // overshoots, e.g. large strains on fine meshes, it loses), and with imposed motions
     // that jump at the step start (a rotation, a drag: they distort the bodies next to
     // them far beyond the step's real strains) the response linearised about the
-    // converged state (also where the extrapolation is worse than the last state: see
-    // below). The one with the smallest residual wins, the residuals measured
+    // converged state. The one with the smallest residual wins, the residuals measured
     // on one scale (the smallest of their force scales: a distorted start inflates its
     // reactions).
     let mut starts: Vec<Vec<f64>> = vec![];
