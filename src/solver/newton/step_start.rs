@@ -92,8 +92,7 @@ pub(super) fn choose_start(
         let f = (lambda - lambda_done) / dl_prev;
         starts.push(x.iter().zip(dx_prev).map(|(xi, d)| xi + f * d).collect());
     }
-    let linearised = problem.imposed_change(lambda_done, lambda);
-    if linearised {
+    if problem.imposed_change(lambda_done, lambda) {
         if let Some(t) = tangent_predictor(problem, lin, x, lambda_done, lambda)? {
             starts.push(t);
         }
@@ -107,46 +106,25 @@ pub(super) fn choose_start(
         for s in &starts {
             norms.push(problem.evaluate(s, lambda, r, false)?);
         }
-        let (mut best, worse) = best_start(&norms);
-        // An extrapolation worse than the last state (a response far from linear in the
-        // load: mortar's normal force λ − c g / D, with c = E/h, on the gaps of a contact
-        // zone extrapolated past the bodies' surfaces; SSNP154 D at 93k unknowns, 20 times
-        // the last state's residual): the response linearised about the converged state is
-        // tried too (there: 0.26 against 0.5, and 22 Newton iterations instead of 39).
-        if worse && last_step.is_some() && !linearised {
-            if let Some(t) = tangent_predictor(problem, lin, x, lambda_done, lambda)? {
-                norms.push(problem.evaluate(&t, lambda, r, false)?);
-                starts.push(t);
-                best = best_start(&norms).0;
+        let scale = norms
+            .iter()
+            .map(|n| n.reference)
+            .filter(|&v| v > 0.0)
+            .fold(f64::INFINITY, f64::min);
+        let measure = |n: &Norms| {
+            if scale.is_finite() {
+                (n.residual / scale).max(n.constraint)
+            } else {
+                n.relative()
             }
-        }
+        };
+        let best = (0..starts.len())
+            .min_by(|&a, &b| measure(&norms[a]).total_cmp(&measure(&norms[b])))
+            .unwrap_or(0);
         *extrapolation_won = last_step.is_some() && best == 1;
         *x = starts.swap_remove(best);
     } else if let Some(start) = starts.pop() {
         *x = start;
     }
     Ok(())
-}
-
-/// The candidate start of the smallest residual, the residuals measured on one scale (the
-/// smallest of their force scales: a distorted start inflates its reactions), and whether
-/// the second (the extrapolation) is worse than the first (the last state).
-fn best_start(norms: &[Norms]) -> (usize, bool) {
-    let scale = norms
-        .iter()
-        .map(|n| n.reference)
-        .filter(|&v| v > 0.0)
-        .fold(f64::INFINITY, f64::min);
-    let measure = |n: &Norms| {
-        if scale.is_finite() {
-            (n.residual / scale).max(n.constraint)
-        } else {
-            n.relative()
-        }
-    };
-    let best = (0..norms.len())
-        .min_by(|&a, &b| measure(&norms[a]).total_cmp(&measure(&norms[b])))
-        .unwrap_or(0);
-    let worse = norms.len() > 1 && measure(&norms[1]) > measure(&norms[0]);
-    (best, worse)
 }
