@@ -134,9 +134,10 @@ impl PointToSegment {
 
     /// Point i's Coulomb branch at (u, λ) as `friction_point` takes it (None: no friction
     /// there), given its geometry, its λ, the floor below which |λ| carries none and the
-    /// pair's peak pressure, with its ρ_f balanced on its pressure there (kept until the next update, so that the
-    /// residual and its tangent see one ρ_f); a point whose slip keeps reversing its
-    /// direction in this step gets a smaller ρ_f (`friction::count_reversal`).
+    /// pair's peak pressure, with its ρ_f balanced on its pressure there (kept until the
+    /// next update, so that the residual and its tangent see one ρ_f); a point whose slip
+    /// keeps reversing its direction in this step gets a smaller ρ_f
+    /// (`friction::count_reversal`).
     pub(super) fn count_friction_switch(
         &mut self,
         mesh: &Mesh,

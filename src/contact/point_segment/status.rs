@@ -71,8 +71,13 @@ impl PointToSegment {
         let mut changes = 0;
         self.changed.clear();
         let lambda_floor = self.friction_floor(lam);
-        let peak = self.peak_pressure(lam);
         let count_switches = self.opts.friction.is_some() && self.opts.tangential_penalty.is_none();
+        // (the balanced ρ_f's pressure floor: only where the branches are decided here)
+        let peak = if count_switches {
+            self.peak_pressure(lam)
+        } else {
+            0.0
+        };
         for i in 0..self.points.len() {
             let e = self.eval(mesh, u, i);
             let lp = self.point_lambda(mesh, i, &e.ns, lam);
