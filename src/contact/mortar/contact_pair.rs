@@ -190,13 +190,7 @@ impl ContactPair for Mortar {
         } else {
             let rows = ndof + mult_base;
             let dg = self.exact_tangent(mesh, u, lam, (&g, &d), &fj, &active, &law, rows, k);
-            let mut cover = vec![0.0; nm];
-            for t in &terms {
-                for &(j, v) in &t.cover {
-                    cover[j] += v;
-                }
-            }
-            let facing = self.facing(mesh, u, &cover, &d);
+            let facing = self.facing(mesh, u, &terms, &d);
             *self.linearisation.lock().unwrap() = Some(active_set::Linearisation {
                 u0: u.to_vec(),
                 g,

@@ -302,3 +302,6 @@ impl Mortar {
         nodes
     }
 }
+
+#[cfg(test)]
+mod tests;

@@ -23,6 +23,8 @@ pub(super) struct CellTerms {
     pub dj: Vec<(usize, f64)>,
     /// ∫ N_j over the parts of the cell that face the master surface
     pub cover: Vec<(usize, f64)>,
+    /// The share of the cell (of its parameter range) that faces a candidate master cell
+    pub span: f64,
     pub force: Vec<(usize, usize, f64)>,
     /// With friction: weighted slips s̃_j = ∫ Φ_j (Δu_s − Δu_m)·τ̂ since the step start,
     /// and tangential force coefficients per unit traction t_j.
@@ -47,6 +49,8 @@ pub(super) struct Overlap<T> {
     pub gap: [T; 3],
     pub slip: [T; 3],
     pub cover: [f64; 3],
+    /// the share of the slave cell's parameter range the overlap spans
+    pub span: f64,
     pub force: [[[T; 2]; 6]; 3],
     pub tforce: [[[T; 2]; 6]; 3],
 }
@@ -92,6 +96,7 @@ impl Mortar {
                 }
             };
             let locals: Vec<usize> = (0..nn).chain(3..3 + mnodes.len()).collect();
+            out.span += o.span;
             for j in 0..nn {
                 let k = mult[j];
                 out.gap.push((k, o.gap[j]));
@@ -240,6 +245,7 @@ impl Mortar {
                 gap: [zero; 3],
                 slip: [zero; 3],
                 cover: [0.0; 3],
+                span: 0.5 * value(hi - lo),
                 force: [[[zero; 2]; 6]; 3],
                 tforce: [[[zero; 2]; 6]; 3],
             };
