@@ -179,7 +179,7 @@ impl Mortar {
     /// With quadratic cells Φ_j changes sign along a cell, so such a gap can be of either
     /// sign whatever the distance: SSNP154 D at 93k unknowns, a load step's start, had a
     /// node open by a cell size with a negative gap, the linearised active set closed it
-    /// and the correction put 80× the peak pressure on the node next to it (17 of 39
+    /// and the correction put 80× the peak pressure on a node near it (17 of 39
     /// iterations spent undoing that). Such a node is taken as not facing: once the
     /// iterate brings it near, the search finds its whole projection.
     pub(super) fn facing(
