@@ -207,9 +207,12 @@ impl Mortar {
                 if self.contact_excluded.contains(&k) || cov[k] <= 0.4 * d[k] {
                     return false;
                 }
-                let at_end = || self.under_master_end(mesh, u, k);
-                let held = self.active.get(k).copied().unwrap_or(false) && at_end();
-                cov[k] > if held { 0.4 } else { 0.5 } * d[k] && (whole[k] || at_end())
+                // (the master end is looked for only where it matters: an active node, or
+                // one partly covered)
+                let active = self.active.get(k).copied().unwrap_or(false);
+                let at_end = (active || !whole[k]) && self.under_master_end(mesh, u, k);
+                let held = active && at_end;
+                cov[k] > if held { 0.4 } else { 0.5 } * d[k] && (whole[k] || at_end)
             })
             .collect()
     }
