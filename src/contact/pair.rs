@@ -102,6 +102,12 @@ pub trait ContactPair {
     fn reference_normals(&self) -> bool {
         false
     }
+    /// Contact points whose friction branch (stick, slip either way) the last status
+    /// update changed where the formulation does not count these among its status
+    /// changes (point-to-segment decides the branches in the residual).
+    fn branch_switches(&self) -> usize {
+        0
+    }
     /// Coulomb coefficient of the pair (0 without friction).
     fn friction(&self) -> f64 {
         0.0

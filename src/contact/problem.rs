@@ -265,6 +265,10 @@ impl Nonlinear for ContactProblem<'_> {
         self.active_set_resolves()
     }
 
+    fn branch_switches(&self) -> usize {
+        self.pairs.iter().map(|p| p.branch_switches()).sum()
+    }
+
     fn backtracking(&self) -> bool {
         self.pairs.iter().any(|p| p.friction() > 0.0)
     }

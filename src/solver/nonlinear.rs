@@ -81,6 +81,11 @@ pub trait Nonlinear {
     fn line_search(&self) -> bool {
         true
     }
+    /// Friction branches the last `update_status` saw change that it did not count among
+    /// the status changes it returned.
+    fn branch_switches(&self) -> usize {
+        0
+    }
     /// Whether a correction that raises the residual without any status change should be
     /// cut back (semi-smooth terms such as friction, which can cycle).
     fn backtracking(&self) -> bool {
@@ -113,6 +118,10 @@ pub struct Iteration {
     pub relative_residual: f64,
     /// Contact statuses changed by the update after this iteration's correction.
     pub status_changes: usize,
+    /// Friction branches that update changed without counting them as status changes
+    /// (`Nonlinear::branch_switches`).
+    #[serde(skip_serializing_if = "is_zero")]
+    pub branch_switches: usize,
     /// Evaluated at the previous iteration's point with the statuses its correction
     /// changed (an active-set re-solve: only the contact terms and the interface redone).
     pub active_set_resolve: bool,
@@ -155,4 +164,8 @@ pub struct NewtonReport {
     /// (time, unknowns) after each converged step, with `keep_states`.
     #[serde(skip)]
     pub states: Vec<(f64, Vec<f64>)>,
+}
+
+fn is_zero(n: &usize) -> bool {
+    *n == 0
 }

@@ -209,6 +209,7 @@ impl PointToSegment {
             mult_coords,
             q_start: vec![0.0; n_mult],
             law: vec![None; n_points],
+            branch_switches: 0,
             switches: vec![0; n_points],
             trial_scale: vec![1.0; n_points],
             balanced_rho_f: vec![rho_f; n_points],

@@ -81,6 +81,9 @@ impl super::super::pair::ContactPair for PointToSegment {
             .map(|(k, &n)| (n, scale(k) * lam[nm + k] / self.node_weight[k]))
             .collect()
     }
+    fn branch_switches(&self) -> usize {
+        self.branch_switches
+    }
     fn friction(&self) -> f64 {
         self.opts.friction.unwrap_or(0.0)
     }

@@ -172,6 +172,9 @@ impl PointToSegment {
                 friction::count_reversal(switches, scale, self.balanced_rho_f[i], dw);
             }
         }
+        if law != self.law[i] {
+            self.branch_switches += 1;
+        }
         self.law[i] = law;
     }
 

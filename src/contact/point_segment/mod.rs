@@ -201,6 +201,8 @@ pub struct PointToSegment {
     /// and its ρ_f balanced on its pressure at the last status update
     /// (`friction::balanced_rho_f`).
     law: Vec<Option<super::friction::State>>,
+    /// Points whose Coulomb branch the last status update changed.
+    branch_switches: usize,
     switches: Vec<u32>,
     trial_scale: Vec<f64>,
     balanced_rho_f: Vec<f64>,

@@ -70,6 +70,7 @@ impl PointToSegment {
         self.pair_all(mesh, u);
         let mut changes = 0;
         self.changed.clear();
+        self.branch_switches = 0;
         let lambda_floor = self.friction_floor(lam);
         let count_switches = self.opts.friction.is_some() && self.opts.tangential_penalty.is_none();
         // (the balanced ρ_f's pressure floor: only where the branches are decided here)
