@@ -139,12 +139,17 @@ pub(super) fn iterate_step(
         // tangent is that of the last step's end), and with friction while the residual
         // is still far from the tolerance but the iterate moves little (stick and slip
         // settling), the bodies' tangent and factorisations are kept and only the contact
-        // terms are current.
+        // terms are current: after a point below FROZEN_BELOW, or after a frozen
+        // correction whose point is below it (one that swung the residual up through
+        // status changes says nothing against the frozen tangent; its point was
+        // factorised in full, as the last point's residual was high: SSNP154 D
+        // node-to-segment at 960k unknowns, 8 s each, two in the first step).
+        let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
         let frozen_candidate = settings.frozen_bodies
             && !resolve
             && lin.condenses_contact()
             && ((it == 0 && last_converged)
-                || (backtracking && prev.is_some_and(|p| p < FROZEN_BELOW)));
+                || (backtracking && (last_frozen || prev.is_some_and(|p| p < FROZEN_BELOW))));
         let mut norms = if resolve || frozen_candidate {
             problem.evaluate_contact_tangent(x, lambda, r)?
         } else {
@@ -152,16 +157,22 @@ pub(super) fn iterate_step(
         };
         // (a tangent evaluated below at the same point leaves the residual as it is)
         let met = meets_tolerance(&norms);
-        // A frozen correction that raised the residual is followed by a full one, and the
-        // last corrections are full ones (see FROZEN_FINISH); not while friction branches
-        // switch: then the switches, one or a few points per correction, set the pace,
-        // and a full tangent brings the step no nearer its end (SSNP154 D, point-to-
-        // segment at 266k unknowns: the second step's last 7 corrections, 1.1 s of
-        // factorisation each, against 0.07 s frozen; 28.7 → 18.4 s in all).
-        let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
-        let raised =
-            last_frozen && !branches_switched && prev.is_some_and(|p| norms.relative() > p);
+        // A frozen correction that raised the residual with the statuses it was made for
+        // is followed by a full one, and the last corrections are full ones (see
+        // FROZEN_FINISH); not while statuses change or friction branches switch: then
+        // these, one or a few points per correction, set the pace, and a full tangent
+        // brings the step no nearer its end (SSNP154 D, point-to-segment at 266k
+        // unknowns: the second step's last 7 corrections, 1.1 s of factorisation each,
+        // against 0.07 s frozen; 28.7 → 18.4 s in all).
+        let raised = last_frozen
+            && changes == 0
+            && !branches_switched
+            && prev.is_some_and(|p| norms.relative() > p);
+        let below = (it == 0 && last_converged)
+            || prev.is_some_and(|p| p < FROZEN_BELOW)
+            || (last_frozen && norms.relative() < FROZEN_BELOW);
         let mut frozen = frozen_candidate
+            && below
             && !raised
             && !met
             && (branches_switched || norms.relative() > FROZEN_FINISH * settings.tolerance);
@@ -243,9 +254,14 @@ pub(super) fn iterate_step(
                 if let Some(alpha) =
                     line_search::backtrack(problem, x, dx, lambda, r, full, reference)?
                 {
-                    // the kept point's residual and tangent
-                    norms = problem.evaluate(x, lambda, r, true)?;
-                    frozen = false;
+                    // the kept point's residual and tangent (a frozen correction's: its
+                    // contact terms; the line search answers the statuses it changed)
+                    if frozen {
+                        norms = problem.evaluate_contact_tangent(x, lambda, r)?;
+                    } else {
+                        norms = problem.evaluate(x, lambda, r, true)?;
+                        frozen = false;
+                    }
                     chord = false;
                     step_length = Some(alpha);
                 }
