@@ -3,6 +3,7 @@
 
 use std::path::Path;
 use tribo::case;
+use tribo::solver::newton::NewtonReport;
 
 fn run(file: &str, dy_ref: f64, siyy_ref: f64) {
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
@@ -238,45 +239,62 @@ fn mortar_pressure_on_refined_meshes_follows_hertz() {
     }
 }
 
+/// SSNP154 D from its case file (at this mesh size, else the file's) solved by Newton with
+/// or without frozen-body corrections: DY_B, Newton's report, the tolerance.
+fn solve_d(size: Option<f64>, frozen_bodies: bool) -> (f64, NewtonReport, f64) {
+    use tribo::contact::problem::ContactProblem;
+    use tribo::solver::linear::Method;
+    use tribo::solver::newton::{self, NewtonSettings};
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/ssnp154/d.toml");
+    let (mut c, dir) = case::load(&path).unwrap();
+    if size.is_some() {
+        c.mesh.size = size;
+    }
+    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
+    let b = mesh.single_node("B").unwrap();
+    let solid = case::build_problem(&c, &mesh).unwrap();
+    let mut p = ContactProblem::new(solid, case::build_pairs(&c, &mesh).unwrap());
+    let settings = NewtonSettings {
+        steps: c.solver.steps,
+        tolerance: c.solver.tolerance,
+        max_iterations: c.solver.max_iterations,
+        frozen_bodies,
+        ..Default::default()
+    };
+    let report = newton::solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
+    (p.solid.u[2 * b + 1], report, c.solver.tolerance)
+}
+
+/// Corrections that factorised the bodies: neither re-solves nor frozen ones nor chord
+/// steps (the last iteration of a step only checks convergence).
+fn body_factorisations(report: &NewtonReport) -> usize {
+    let corrections = report
+        .steps
+        .iter()
+        .flat_map(|s| &s.iterations[..s.iterations.len() - 1]);
+    corrections
+        .filter(|i| !i.frozen_bodies && !i.active_set_resolve && !i.chord)
+        .count()
+}
+
 /// With friction, corrections far from the tolerance may keep the bodies' tangent and
 /// factorisations with current contact terms (frozen bodies): on D they reach the state of
 /// full Newton corrections to the tolerance, with fewer factorisations of the bodies.
 #[test]
 fn frozen_body_corrections_reach_the_newton_state() {
-    use tribo::contact::problem::ContactProblem;
-    use tribo::solver::linear::Method;
-    use tribo::solver::newton::{self, NewtonSettings};
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/ssnp154/d.toml");
-    let (c, dir) = case::load(&path).unwrap();
-    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
-    let b = mesh.single_node("B").unwrap();
-    let run = |frozen_bodies: bool| {
-        let solid = case::build_problem(&c, &mesh).unwrap();
-        let mut p = ContactProblem::new(solid, case::build_pairs(&c, &mesh).unwrap());
-        let settings = NewtonSettings {
-            steps: c.solver.steps,
-            tolerance: c.solver.tolerance,
-            max_iterations: c.solver.max_iterations,
-            frozen_bodies,
-            ..Default::default()
-        };
-        let report = newton::solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
-        // corrections that factorised the bodies: neither re-solves nor frozen ones (the
-        // last iteration of a step only checks convergence)
-        let (mut full, mut frozen) = (0, 0);
-        for s in &report.steps {
-            for i in &s.iterations[..s.iterations.len() - 1] {
-                frozen += usize::from(i.frozen_bodies);
-                full += usize::from(!i.frozen_bodies && !i.active_set_resolve && !i.chord);
-            }
-        }
-        (p.solid.u[2 * b + 1], full, frozen)
+    let (dy_newton, newton, _) = solve_d(None, false);
+    let (dy, report, _) = solve_d(None, true);
+    let frozen = |r: &NewtonReport| {
+        let all = r.steps.iter().flat_map(|s| &s.iterations);
+        all.filter(|i| i.frozen_bodies).count()
     };
-    let (dy_newton, full_newton, none) = run(false);
-    let (dy, full, frozen) = run(true);
-    println!("DY_B {dy} vs {dy_newton}; body factorisations {full} ({frozen} frozen corrections) vs {full_newton}");
-    assert_eq!(none, 0);
-    assert!(frozen > 0);
+    let (full, full_newton) = (body_factorisations(&report), body_factorisations(&newton));
+    println!(
+        "DY_B {dy} vs {dy_newton}; body factorisations {full} ({} frozen corrections) vs {full_newton}",
+        frozen(&report)
+    );
+    assert_eq!(frozen(&newton), 0);
+    assert!(frozen(&report) > 0);
     assert!(full < full_newton);
     assert!(
         (dy / dy_newton - 1.0).abs() < 1e-6,
@@ -291,46 +309,21 @@ fn frozen_body_corrections_reach_the_newton_state() {
 /// tolerance, with fewer factorisations of the bodies.
 #[test]
 fn corrections_stay_frozen_while_friction_branches_switch() {
-    use tribo::contact::problem::ContactProblem;
-    use tribo::solver::linear::Method;
-    use tribo::solver::newton::{self, NewtonSettings};
-    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/ssnp154/d.toml");
-    let (mut c, dir) = case::load(&path).unwrap();
     // (0.5 mm: 25 Newton iterations, one frozen correction after switches near the end)
-    c.mesh.size = Some(0.5);
-    let mesh = case::build_mesh(&c.mesh, &dir).unwrap();
-    let b = mesh.single_node("B").unwrap();
-    let run = |frozen_bodies: bool| {
-        let solid = case::build_problem(&c, &mesh).unwrap();
-        let mut p = ContactProblem::new(solid, case::build_pairs(&c, &mesh).unwrap());
-        let settings = NewtonSettings {
-            steps: c.solver.steps,
-            tolerance: c.solver.tolerance,
-            max_iterations: c.solver.max_iterations,
-            frozen_bodies,
-            ..Default::default()
-        };
-        let report = newton::solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
-        let (mut full, mut kept_near_end) = (0, 0);
-        for s in &report.steps {
-            for w in s.iterations.windows(2) {
-                let (before, i) = (&w[0], &w[1]);
-                full += usize::from(!i.frozen_bodies && !i.active_set_resolve && !i.chord);
-                let near_end = i.relative_residual <= 1e2 * c.solver.tolerance;
-                kept_near_end +=
-                    usize::from(near_end && before.branch_switches > 0 && i.frozen_bodies);
-            }
-        }
-        (
-            p.solid.u[2 * b + 1],
-            full,
-            kept_near_end,
-            report.total_iterations,
-        )
-    };
-    let (dy_newton, full_newton, _, its_newton) = run(false);
-    let (dy, full, kept, its) = run(true);
-    println!("DY_B {dy} vs {dy_newton}; body factorisations {full} vs {full_newton}; {kept} kept near the end; iterations {its} vs {its_newton}");
+    let (dy_newton, newton, _) = solve_d(Some(0.5), false);
+    let (dy, report, tolerance) = solve_d(Some(0.5), true);
+    // frozen corrections near the tolerance that follow branch switches
+    let kept = report
+        .steps
+        .iter()
+        .flat_map(|s| s.iterations.windows(2))
+        .filter(|w| {
+            let (before, i) = (&w[0], &w[1]);
+            i.relative_residual <= 1e2 * tolerance && before.branch_switches > 0 && i.frozen_bodies
+        })
+        .count();
+    let (full, full_newton) = (body_factorisations(&report), body_factorisations(&newton));
+    println!("DY_B {dy} vs {dy_newton}; body factorisations {full} vs {full_newton}; {kept} kept near the end");
     assert!(kept > 0);
     assert!(full < full_newton);
     assert!(

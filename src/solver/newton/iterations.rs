@@ -11,10 +11,11 @@ use super::step_start::rest_solution;
 use super::{Iteration, NewtonReport, NewtonSettings, Nonlinear, StepReport};
 use crate::error::{Error, Result};
 
-/// Frozen-body corrections: only from a residual below FROZEN_BELOW (or at a step's start),
-/// not once the residual is within FROZEN_FINISH times the tolerance (the last corrections
-/// are full Newton ones, so friction's constraint rows converge as far below the tolerance
-/// as they do without), unless friction branches still switch (see `frozen` below).
+/// Frozen-body corrections: only from a residual below FROZEN_BELOW (that of the last point,
+/// or after a frozen correction this point's; or at a step's start), not once the residual
+/// is within FROZEN_FINISH times the tolerance (the last corrections are full Newton ones,
+/// so friction's constraint rows converge as far below the tolerance as they do without),
+/// unless friction branches still switch (see `frozen` below).
 const FROZEN_BELOW: f64 = 0.1;
 const FROZEN_FINISH: f64 = 1e2;
 
@@ -139,11 +140,10 @@ pub(super) fn iterate_step(
         // tangent is that of the last step's end), and with friction while the residual
         // is still far from the tolerance but the iterate moves little (stick and slip
         // settling), the bodies' tangent and factorisations are kept and only the contact
-        // terms are current: after a point below FROZEN_BELOW, or after a frozen
-        // correction whose point is below it (one that swung the residual up through
-        // status changes says nothing against the frozen tangent; its point was
-        // factorised in full, as the last point's residual was high: SSNP154 D
-        // node-to-segment at 960k unknowns, 8 s each, two in the first step).
+        // terms are current: after a point below FROZEN_BELOW, or after a frozen correction
+        // if this point is below it (judged by the last point alone, a frozen correction
+        // that swung the residual up through status changes was followed by full ones:
+        // SSNP154 D node-to-segment at 960k unknowns, two in the first step, 8 s each).
         let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
         let frozen_candidate = settings.frozen_bodies
             && !resolve
@@ -256,12 +256,11 @@ pub(super) fn iterate_step(
                 {
                     // the kept point's residual and tangent (a frozen correction's: its
                     // contact terms; the line search answers the statuses it changed)
-                    if frozen {
-                        norms = problem.evaluate_contact_tangent(x, lambda, r)?;
+                    norms = if frozen {
+                        problem.evaluate_contact_tangent(x, lambda, r)?
                     } else {
-                        norms = problem.evaluate(x, lambda, r, true)?;
-                        frozen = false;
-                    }
+                        problem.evaluate(x, lambda, r, true)?
+                    };
                     chord = false;
                     step_length = Some(alpha);
                 }
