@@ -75,8 +75,6 @@ pub(super) fn iterate_step(
     };
     let mut failure = None;
     let mut changes = usize::MAX;
-    // friction branches switched by the last status update (see `frozen` below)
-    let mut branches_switched = false;
     // the last correction, for the backtracking below
     let mut last_dx: Option<Vec<f64>> = None;
     // re-solve from the last linearisation point with new statuses (see below)
@@ -134,6 +132,11 @@ pub(super) fn iterate_step(
         // load step's last full correction starts from 2–5e-2 and is followed by chord
         // steps).
         let prev = step.iterations.last().map(|i| i.relative_residual);
+        // friction branches switched by the last status update (see `frozen` below)
+        let branches_switched = step
+            .iterations
+            .last()
+            .is_some_and(|i| i.branch_switches > 0);
         let likely_converged = changes == 0
             && prev.is_some_and(|p| p < 1e-3 || (chord_coefficient.is_some() && p < 1e-1));
         // Frozen bodies: at the start of a step that follows a converged one (the bodies'
@@ -464,7 +467,6 @@ pub(super) fn iterate_step(
         linearised_seen.clear();
         let before = changes;
         changes = problem.update_status(x, lambda)?;
-        branches_switched = problem.branch_switches() > 0;
         // Re-solves settle a few statuses. One that changes more of them than the one
         // before it, and more than half as many as started them, is swinging, not
         // settling (SSNP154 D at 0.05 mm, a step's start: 154, 127, 149, 139 …
@@ -478,7 +480,6 @@ pub(super) fn iterate_step(
                 }
                 last_dx = Some(dx);
                 changes = problem.update_status(x, lambda)?;
-                branches_switched = problem.branch_switches() > 0;
                 resolves_off = true;
                 taken_back = true;
             }
