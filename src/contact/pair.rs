@@ -26,6 +26,13 @@ pub trait ContactPair {
     fn set_tangent_wanted(&self, _wanted: bool) {}
     /// Updates statuses (and pairing) from the iterate; returns how many changed.
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize;
+    /// Bumped whenever the pair's matrix pattern grows (couplings that come within reach).
+    fn pattern_generation(&self) -> usize {
+        0
+    }
+    /// Takes into its pattern the couplings within reach at displacement u, predicted for
+    /// the end of the loading (see `Nonlinear::anticipate`).
+    fn anticipate(&mut self, _mesh: &Mesh, _u: &[f64]) {}
     /// Slave nodes whose status changed in the last `update_status` (for failure messages:
     /// where the statuses cycle).
     fn changed_nodes(&self) -> Vec<usize> {

@@ -192,6 +192,20 @@ impl Nonlinear for ContactProblem<'_> {
         Ok(changes)
     }
 
+    fn pattern_generation(&self) -> usize {
+        self.pairs.iter().map(|p| p.pattern_generation()).sum()
+    }
+
+    fn anticipate(&mut self, x: &[f64], lambda: f64) {
+        let nf = self.solid.num_free();
+        let mut u = vec![0.0; self.solid.u.len()];
+        self.solid.displacement(&x[..nf], lambda, &mut u);
+        let mesh = self.solid.mesh;
+        for p in &mut self.pairs {
+            p.anticipate(mesh, &u);
+        }
+    }
+
     fn restart_statuses(&mut self) {
         let mesh = self.solid.mesh;
         for p in &mut self.pairs {

@@ -71,6 +71,13 @@ pub trait Nonlinear {
     fn status_signature(&self) -> u64 {
         0
     }
+    /// Bumped whenever the tangent's pattern grows (contact couplings come within reach).
+    fn pattern_generation(&self) -> usize {
+        0
+    }
+    /// Takes into the tangent's pattern the couplings within reach at unknowns x and time
+    /// lambda, a prediction of the loading's end.
+    fn anticipate(&mut self, _x: &[f64], _lambda: f64) {}
     /// Whether status changes are worth an active-set re-solve from the same point (the
     /// bodies' factorisations stand; see `solve`).
     fn active_set_resolves(&self) -> bool {

@@ -27,6 +27,12 @@ impl super::super::pair::ContactPair for PointToSegment {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         self.update_status(mesh, u, lam)
     }
+    fn pattern_generation(&self) -> usize {
+        self.candidates_generation
+    }
+    fn anticipate(&mut self, mesh: &Mesh, u: &[f64]) {
+        self.anticipate(mesh, u)
+    }
     fn commit(&mut self, u: &[f64], lam: &[f64]) {
         self.commit(u, lam)
     }

@@ -4,7 +4,7 @@
 
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
-use super::{Eval, PointToSegment, PAIRING_HYSTERESIS, PAIRING_REACH};
+use super::{candidates_at, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH};
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::mesh::Mesh;
 
@@ -150,6 +150,24 @@ impl PointToSegment {
             }
         }
         self.candidates_generation += 1;
+    }
+
+    /// Adds to each slave cell's candidates the master cells within reach at displacement u
+    /// (as the initial candidates on the initial geometry).
+    pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64]) {
+        let near = candidates_at(mesh, Some(u), &self.slave, &self.master, CANDIDATE_MARGIN);
+        let mut grew = false;
+        for (list, more) in self.candidates.iter_mut().zip(near) {
+            for m in more {
+                if !list.contains(&m) {
+                    list.push(m);
+                    grew = true;
+                }
+            }
+        }
+        if grew {
+            self.candidates_generation += 1;
+        }
     }
 
     /// Geometry of point i at displacement u: projected again on its paired master cell

@@ -121,6 +121,9 @@ pub(super) fn solve_steps(
         }
         let at = StepContext {
             lambda,
+            start: lambda_done,
+            x_start: &x_start,
+            end: t_end,
             step_k,
             step_n,
             backtracking,
