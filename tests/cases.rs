@@ -242,6 +242,14 @@ fn mortar_pressure_on_refined_meshes_follows_hertz() {
 /// SSNP154 D from its case file (at this mesh size, else the file's) solved by Newton with
 /// or without frozen-body corrections: DY_B, Newton's report, the tolerance.
 fn solve_d(size: Option<f64>, frozen_bodies: bool) -> (f64, NewtonReport, f64) {
+    solve_d_with(size, |s| s.frozen_bodies = frozen_bodies)
+}
+
+/// `solve_d` with the Newton settings as `set` leaves them.
+fn solve_d_with(
+    size: Option<f64>,
+    set: impl Fn(&mut tribo::solver::newton::NewtonSettings),
+) -> (f64, NewtonReport, f64) {
     use tribo::contact::problem::ContactProblem;
     use tribo::solver::linear::Method;
     use tribo::solver::newton::{self, NewtonSettings};
@@ -254,13 +262,13 @@ fn solve_d(size: Option<f64>, frozen_bodies: bool) -> (f64, NewtonReport, f64) {
     let b = mesh.single_node("B").unwrap();
     let solid = case::build_problem(&c, &mesh).unwrap();
     let mut p = ContactProblem::new(solid, case::build_pairs(&c, &mesh).unwrap());
-    let settings = NewtonSettings {
+    let mut settings = NewtonSettings {
         steps: c.solver.steps,
         tolerance: c.solver.tolerance,
         max_iterations: c.solver.max_iterations,
-        frozen_bodies,
         ..Default::default()
     };
+    set(&mut settings);
     let report = newton::solve(&mut p, &settings, Method::SaddleLdlt).unwrap();
     (p.solid.u[2 * b + 1], report, c.solver.tolerance)
 }
@@ -330,4 +338,29 @@ fn corrections_stay_frozen_while_friction_branches_switch() {
         (dy / dy_newton - 1.0).abs() < 1e-6,
         "DY_B {dy} vs {dy_newton}"
     );
+}
+
+/// A contact zone that grows out of the tangent's pattern (D at 0.12 mm: new slave cells
+/// within reach after the first correction, and again in the second step) makes the
+/// pattern take in at once the couplings within reach at the loading's end: one new
+/// analysis instead of one per growth, the same Newton path and state.
+#[test]
+fn a_growing_contact_zone_takes_in_its_final_reach_at_once() {
+    let (dy, report, tol) = solve_d_with(Some(0.12), |_| {});
+    let (dy_cells, cells, _) = solve_d_with(Some(0.12), |s| s.anticipate_pattern = false);
+    let analyses = |r: &NewtonReport| r.symbolic_factorizations;
+    println!(
+        "DY_B {dy} vs {dy_cells}; analyses {} vs {}; iterations {} vs {}",
+        analyses(&report),
+        analyses(&cells),
+        report.total_iterations,
+        cells.total_iterations
+    );
+    assert!(
+        analyses(&cells) >= 3,
+        "the zone grows out of the pattern twice when it grows by cells"
+    );
+    assert_eq!(analyses(&report), 2, "the first analysis and one more");
+    assert!(report.total_iterations <= cells.total_iterations);
+    assert!((dy - dy_cells).abs() <= tol * dy_cells.abs());
 }

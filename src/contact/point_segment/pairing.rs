@@ -4,7 +4,9 @@
 
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
-use super::{candidates_at, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH};
+use super::{
+    candidates_at, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH,
+};
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::mesh::Mesh;
 

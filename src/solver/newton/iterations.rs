@@ -500,7 +500,10 @@ pub(super) fn iterate_step(
         // point-to-segment at 960k unknowns: 5 analyses, 4 of them at active-set
         // re-solves or frozen-body corrections that then factorised the bodies, 49 s of
         // 127).
-        if problem.pattern_generation() != generation && lambda > start {
+        if settings.anticipate_pattern
+            && problem.pattern_generation() != generation
+            && lambda > start
+        {
             let s = (end - start) / (lambda - start);
             let predicted: Vec<f64> = x_start
                 .iter()

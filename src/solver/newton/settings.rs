@@ -1,6 +1,6 @@
 //! `NewtonSettings`: the load steps, tolerance, iteration and cut limits, and which
 //! shortcuts Newton may take (factorisation reuse, chord steps, frozen bodies, kinematic
-//! continuation).
+//! continuation, anticipated contact patterns).
 
 #[derive(Clone, Debug)]
 pub struct NewtonSettings {
@@ -26,6 +26,9 @@ pub struct NewtonSettings {
     /// A model with large kinematics solves its first load step with linear kinematics
     /// first, and from that solution with its own (see `continuation.rs`).
     pub kinematic_continuation: bool,
+    /// A contact zone that grows out of the tangent's pattern makes it take in at once
+    /// the couplings within reach at the loading's end (see `iterations.rs`).
+    pub anticipate_pattern: bool,
 }
 
 impl Default for NewtonSettings {
@@ -42,6 +45,7 @@ impl Default for NewtonSettings {
             chord_steps: true,
             frozen_bodies: true,
             kinematic_continuation: true,
+            anticipate_pattern: true,
         }
     }
 }
