@@ -31,8 +31,9 @@ pub trait ContactPair {
         0
     }
     /// Takes into its pattern the couplings within reach at displacement u, predicted for
-    /// the end of the loading (see `Nonlinear::anticipate`).
-    fn anticipate(&mut self, _mesh: &Mesh, _u: &[f64]) {}
+    /// the end of the loading, or within `reach` (a distance) of it (see
+    /// `Nonlinear::anticipate`).
+    fn anticipate(&mut self, _mesh: &Mesh, _u: &[f64], _reach: f64) {}
     /// Slave nodes whose status changed in the last `update_status` (for failure messages:
     /// where the statuses cycle).
     fn changed_nodes(&self) -> Vec<usize> {

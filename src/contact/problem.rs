@@ -11,6 +11,14 @@ use crate::fem::solid::Kinematics;
 use crate::solver::newton::Nonlinear;
 use crate::solver::problem::{Norms, SolidProblem};
 
+/// The error allowed for a prediction of the displacement at the loading's end (see
+/// `anticipate`), as a fraction of the largest motion it extrapolates: couplings within
+/// that distance of the predicted geometry are taken in too. SSNP154 A point-to-segment at
+/// 98k unknowns: without it, the first step's prediction fell 46 interface unknowns short
+/// of the zone at the loading's end, and the second step analysed the pattern again; at
+/// 960k D point-to-segment's did, twice. 0.5: D 266k took in no more than without.
+const PREDICTION_ERROR: f64 = 0.5;
+
 pub struct ContactProblem<'m> {
     pub solid: SolidProblem<'m>,
     pub pairs: Vec<Box<dyn ContactPair>>,
@@ -196,13 +204,20 @@ impl Nonlinear for ContactProblem<'_> {
         self.pairs.iter().map(|p| p.pattern_generation()).sum()
     }
 
-    fn anticipate(&mut self, x: &[f64], lambda: f64) {
+    fn anticipate(&mut self, x: &[f64], lambda: f64, predicted: &[f64], end: f64) {
         let nf = self.solid.num_free();
         let mut u = vec![0.0; self.solid.u.len()];
         self.solid.displacement(&x[..nf], lambda, &mut u);
+        let mut u_end = vec![0.0; self.solid.u.len()];
+        self.solid.displacement(&predicted[..nf], end, &mut u_end);
+        let motion = u
+            .chunks(2)
+            .zip(u_end.chunks(2))
+            .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
+            .fold(0.0, f64::max);
         let mesh = self.solid.mesh;
         for p in &mut self.pairs {
-            p.anticipate(mesh, &u);
+            p.anticipate(mesh, &u_end, PREDICTION_ERROR * motion);
         }
     }
 

@@ -75,9 +75,9 @@ pub trait Nonlinear {
     fn pattern_generation(&self) -> usize {
         0
     }
-    /// Takes into the tangent's pattern the couplings within reach at unknowns x and time
-    /// lambda, a prediction of the loading's end.
-    fn anticipate(&mut self, _x: &[f64], _lambda: f64) {}
+    /// Takes into the tangent's pattern the couplings within reach at `predicted`, the
+    /// unknowns predicted at time `end` (the loading's end) from x at time lambda.
+    fn anticipate(&mut self, _x: &[f64], _lambda: f64, _predicted: &[f64], _end: f64) {}
     /// Whether status changes are worth an active-set re-solve from the same point (the
     /// bodies' factorisations stand; see `solve`).
     fn active_set_resolves(&self) -> bool {

@@ -30,8 +30,8 @@ impl super::super::pair::ContactPair for PointToSegment {
     fn pattern_generation(&self) -> usize {
         self.candidates_generation
     }
-    fn anticipate(&mut self, mesh: &Mesh, u: &[f64]) {
-        self.anticipate(mesh, u)
+    fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
+        self.anticipate(mesh, u, reach)
     }
     fn commit(&mut self, u: &[f64], lam: &[f64]) {
         self.commit(u, lam)

@@ -5,7 +5,7 @@
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
 use super::{
-    candidates_at, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH,
+    candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH,
 };
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::mesh::Mesh;
@@ -155,9 +155,16 @@ impl PointToSegment {
     }
 
     /// Adds to each slave cell's candidates the master cells within reach at displacement u
-    /// (as the initial candidates on the initial geometry).
-    pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64]) {
-        let near = candidates_at(mesh, Some(u), &self.slave, &self.master, CANDIDATE_MARGIN);
+    /// (as the initial candidates on the initial geometry), or within `reach` of it.
+    pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
+        let near = candidates_within(
+            mesh,
+            Some(u),
+            &self.slave,
+            &self.master,
+            CANDIDATE_MARGIN,
+            reach,
+        );
         let mut grew = false;
         for (list, more) in self.candidates.iter_mut().zip(near) {
             for m in more {

@@ -496,10 +496,10 @@ pub(super) fn iterate_step(
         // The contact zone grew out of the tangent's pattern, so that the next solve
         // analyses a new one: the pattern takes in at once the couplings within reach at
         // the loading's end, the iterate's change since the step's start extrapolated
-        // there, instead of growing a few cells at a time with an analysis each (SSNP154 D
-        // point-to-segment at 960k unknowns: 5 analyses, 4 of them at active-set
-        // re-solves or frozen-body corrections that then factorised the bodies, 49 s of
-        // 127).
+        // there (with a margin for the prediction's error), instead of growing a few cells
+        // at a time with an analysis each (SSNP154 D point-to-segment at 960k unknowns: 5
+        // analyses, 4 of them at active-set re-solves or frozen-body corrections that then
+        // factorised the bodies, 49 s of 127; now 2).
         if settings.anticipate_pattern
             && problem.pattern_generation() != generation
             && lambda > start
@@ -510,7 +510,7 @@ pub(super) fn iterate_step(
                 .zip(x.iter())
                 .map(|(a, b)| a + s * (b - a))
                 .collect();
-            problem.anticipate(&predicted, end);
+            problem.anticipate(x, lambda, &predicted, end);
         }
         if changes > 0 {
             for n in problem.changed_nodes() {
