@@ -21,12 +21,13 @@
 //! |---|---|
 //! | `mod.rs` | options, the pair's state, a contact point and its geometry |
 //! | `construction.rs` | `new`: contact points, weights, multipliers; counts |
-//! | `pairing.rs` | pairing points with master cells, projection, the point's geometry (`eval`) |
+//! | `pairing.rs` | pairing points with master cells, projection, the point's geometry (`eval`), candidates anticipated at a predicted displacement |
 //! | `residual.rs` | `contribute`: normal residual and tangent, the matrix pattern |
 //! | `friction.rs` | Coulomb friction at a point: semi-multiplier or tangential penalty |
 //! | `status.rs` | initial statuses, the active set update, step commit and restore, pressures |
 //! | `candidates.rs` | master cells within reach of each slave cell (also used by `mortar`) |
 //! | `contact_pair.rs` | the `ContactPair` interface |
+//! | `tests.rs` | anticipated candidates |
 
 mod candidates;
 mod construction;
@@ -255,3 +256,6 @@ struct Eval {
     /// `normal` is the smoothed one (see `smoothed_normal.rs`)
     smoothed: bool,
 }
+
+#[cfg(test)]
+mod tests;

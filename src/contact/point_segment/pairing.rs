@@ -5,7 +5,8 @@
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
 use super::{
-    candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS, PAIRING_REACH,
+    candidates_at, candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS,
+    PAIRING_REACH,
 };
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
 use crate::mesh::Mesh;
@@ -155,28 +156,41 @@ impl PointToSegment {
     }
 
     /// Adds to each slave cell's candidates the master cells within reach at displacement u
-    /// (as the initial candidates on the initial geometry), or within `reach` of it.
+    /// (as the initial candidates on the initial geometry), and those within `reach` (a
+    /// distance) of it unless these would more than double what u alone brings (a body
+    /// predicted to slide far: its cells would each take in the master cells along the
+    /// whole path).
     pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
-        let near = candidates_within(
+        let beyond = |near: Vec<Vec<usize>>| -> Vec<Vec<usize>> {
+            let held = self.candidates.iter();
+            held.zip(near)
+                .map(|(list, more)| more.into_iter().filter(|m| !list.contains(m)).collect())
+                .collect()
+        };
+        let count = |new: &[Vec<usize>]| new.iter().map(Vec::len).sum::<usize>();
+        let (slave, master) = (&self.slave, &self.master);
+        let at_u = beyond(candidates_at(
             mesh,
             Some(u),
-            &self.slave,
-            &self.master,
+            slave,
+            master,
             CANDIDATE_MARGIN,
-            reach,
-        );
-        let mut grew = false;
-        for (list, more) in self.candidates.iter_mut().zip(near) {
-            for m in more {
-                if !list.contains(&m) {
-                    list.push(m);
-                    grew = true;
-                }
-            }
+        ));
+        let within = candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, reach);
+        let within = beyond(within);
+        let held = count(&self.candidates);
+        let new = if held + count(&within) <= 2 * (held + count(&at_u)) {
+            within
+        } else {
+            at_u
+        };
+        if count(&new) == 0 {
+            return;
         }
-        if grew {
-            self.candidates_generation += 1;
+        for (list, more) in self.candidates.iter_mut().zip(new) {
+            list.extend(more);
         }
+        self.candidates_generation += 1;
     }
 
     /// Geometry of point i at displacement u: projected again on its paired master cell

@@ -1,0 +1,94 @@
+//! Anticipated candidates: a block lifted ten cells above a foundation has none; a
+//! predicted displacement that sets it down brings every slave cell within reach at once,
+//! and a prediction gone wild is refused.
+
+use super::*;
+use crate::fem::material::Modelisation;
+use crate::mesh::generate::rectangle;
+use crate::mesh::{CellKind, Mesh, MeshBuilder};
+
+/// A 1.4 × 0.5 block (cells of side 0.1, groups `Upper…`) a gap of 1.0 above a 6 × 1
+/// foundation (groups `Lower…`); the block's nodes come last.
+fn lifted_block() -> (Mesh, usize) {
+    let lower = rectangle([0.0, -1.0], 6.0, 1.0, 60, 10, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([0.3, 1.0], 1.4, 0.5, 14, 5, CellKind::Quad4, 0.0).unwrap();
+    let mut b = MeshBuilder::new("lifted block");
+    b.append(&lower, |g| format!("Lower{g}"));
+    b.append(&upper, |g| format!("Upper{g}"));
+    (b.finish().unwrap(), lower.num_nodes())
+}
+
+#[test]
+fn a_predicted_displacement_brings_the_slave_cells_within_reach_at_once() {
+    let (mesh, first_upper) = lifted_block();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let cells = slave.cells.len();
+    let mut p = PointToSegment::new(
+        &mesh,
+        slave,
+        master,
+        Options::default(),
+        Modelisation::PlaneStrain,
+        1.0,
+    );
+    p.initialise(&mesh);
+    assert!(p.candidates.iter().all(Vec::is_empty), "ten cells apart");
+    let moved = |dx: f64, dy: f64| {
+        let mut u = vec![0.0; 2 * mesh.num_nodes()];
+        for n in first_upper..mesh.num_nodes() {
+            u[2 * n] = dx;
+            u[2 * n + 1] = dy;
+        }
+        u
+    };
+    // set down: every slave cell within reach, in one growth of the pattern
+    p.anticipate(&mesh, &moved(0.0, -1.0), 0.0);
+    assert_eq!(p.candidates_generation, 1);
+    assert!(
+        p.candidates.iter().all(|c| !c.is_empty()),
+        "all {cells} cells"
+    );
+    let held: Vec<Vec<usize>> = p.candidates.clone();
+    // the same again: nothing new
+    p.anticipate(&mesh, &moved(0.0, -1.0), 0.0);
+    assert_eq!(p.candidates_generation, 1);
+    // the candidates held, and those of a prediction (`reach` 0: at u alone)
+    let (slave, master) = (p.slave.clone(), p.master.clone());
+    let union = |held: &[Vec<usize>], u: &[f64], reach: f64| -> Vec<Vec<usize>> {
+        let near = candidates_within(&mesh, Some(u), &slave, &master, CANDIDATE_MARGIN, reach);
+        let mut all: Vec<Vec<usize>> = held.to_vec();
+        for (list, more) in all.iter_mut().zip(near) {
+            let new: Vec<usize> = more.into_iter().filter(|m| !list.contains(m)).collect();
+            list.extend(new);
+            list.sort_unstable();
+        }
+        all
+    };
+    let sorted = |c: &[Vec<usize>]| -> Vec<Vec<usize>> {
+        c.iter()
+            .map(|l| {
+                let mut l = l.clone();
+                l.sort_unstable();
+                l
+            })
+            .collect()
+    };
+    // slid along by two block widths, with a reach of half that: each cell would take in
+    // the master cells along the whole path, more than twice what the slid block alone
+    // brings: the latter only
+    let slid = moved(2.8, -1.0);
+    let expected = union(&held, &slid, 0.0);
+    assert!(sorted(&expected) != sorted(&union(&held, &slid, 1.4)));
+    p.anticipate(&mesh, &slid, 1.4);
+    assert_eq!(p.candidates_generation, 2);
+    assert_eq!(sorted(&p.candidates), expected);
+    // slid by one more cell, with a reach of six cells: taken with the reach
+    let held = p.candidates.clone();
+    let nudged = moved(2.9, -1.0);
+    let expected = union(&held, &nudged, 0.6);
+    assert!(sorted(&expected) != sorted(&union(&held, &nudged, 0.0)));
+    p.anticipate(&mesh, &nudged, 0.6);
+    assert_eq!(p.candidates_generation, 3);
+    assert_eq!(sorted(&p.candidates), expected);
+}
