@@ -157,9 +157,9 @@ impl PointToSegment {
 
     /// Adds to each slave cell's candidates the master cells within reach at displacement u
     /// (as the initial candidates on the initial geometry), and those within `reach` (a
-    /// distance) of it unless these would more than double what u alone brings (a body
-    /// predicted to slide far: its cells would each take in the master cells along the
-    /// whole path).
+    /// distance) of it unless these would more than double the master cells that u alone
+    /// brings into the pattern (a body predicted to slide far would take in every master
+    /// cell along its path; the interface grows with them).
     pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
         let beyond = |near: Vec<Vec<usize>>| -> Vec<Vec<usize>> {
             let held = self.candidates.iter();
@@ -167,24 +167,25 @@ impl PointToSegment {
                 .map(|(list, more)| more.into_iter().filter(|m| !list.contains(m)).collect())
                 .collect()
         };
-        let count = |new: &[Vec<usize>]| new.iter().map(Vec::len).sum::<usize>();
+        // the master cells of the pattern with these added
+        let cells = |new: &[Vec<usize>]| {
+            let mut all = vec![false; self.master.cells.len()];
+            for &m in self.candidates.iter().chain(new).flatten() {
+                all[m] = true;
+            }
+            all.iter().filter(|&&c| c).count()
+        };
         let (slave, master) = (&self.slave, &self.master);
-        let at_u = beyond(candidates_at(
-            mesh,
-            Some(u),
-            slave,
-            master,
-            CANDIDATE_MARGIN,
-        ));
+        let at_u = candidates_at(mesh, Some(u), slave, master, CANDIDATE_MARGIN);
+        let at_u = beyond(at_u);
         let within = candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, reach);
         let within = beyond(within);
-        let held = count(&self.candidates);
-        let new = if held + count(&within) <= 2 * (held + count(&at_u)) {
+        let new = if cells(&within) <= 2 * cells(&at_u) {
             within
         } else {
             at_u
         };
-        if count(&new) == 0 {
+        if new.iter().all(Vec::is_empty) {
             return;
         }
         for (list, more) in self.candidates.iter_mut().zip(new) {

@@ -7,10 +7,10 @@ use crate::fem::material::Modelisation;
 use crate::mesh::generate::rectangle;
 use crate::mesh::{CellKind, Mesh, MeshBuilder};
 
-/// A 1.4 × 0.5 block (cells of side 0.1, groups `Upper…`) a gap of 1.0 above a 6 × 1
+/// A 1.4 × 0.5 block (cells of side 0.1, groups `Upper…`) a gap of 1.0 above a 20 × 1
 /// foundation (groups `Lower…`); the block's nodes come last.
 fn lifted_block() -> (Mesh, usize) {
-    let lower = rectangle([0.0, -1.0], 6.0, 1.0, 60, 10, CellKind::Quad4, 0.0).unwrap();
+    let lower = rectangle([0.0, -1.0], 20.0, 1.0, 200, 10, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([0.3, 1.0], 1.4, 0.5, 14, 5, CellKind::Quad4, 0.0).unwrap();
     let mut b = MeshBuilder::new("lifted block");
     b.append(&lower, |g| format!("Lower{g}"));
@@ -74,18 +74,18 @@ fn a_predicted_displacement_brings_the_slave_cells_within_reach_at_once() {
             })
             .collect()
     };
-    // slid along by two block widths, with a reach of half that: each cell would take in
-    // the master cells along the whole path, more than twice what the slid block alone
-    // brings: the latter only
-    let slid = moved(2.8, -1.0);
+    // slid along by five block widths, with a reach of half that: the pattern would take
+    // in the master cells along the path, more than twice those under the block where it
+    // stopped and where it was: those only
+    let slid = moved(7.0, -1.0);
     let expected = union(&held, &slid, 0.0);
-    assert!(sorted(&expected) != sorted(&union(&held, &slid, 1.4)));
-    p.anticipate(&mesh, &slid, 1.4);
+    assert!(sorted(&expected) != sorted(&union(&held, &slid, 3.5)));
+    p.anticipate(&mesh, &slid, 3.5);
     assert_eq!(p.candidates_generation, 2);
     assert_eq!(sorted(&p.candidates), expected);
     // slid by one more cell, with a reach of six cells: taken with the reach
     let held = p.candidates.clone();
-    let nudged = moved(2.9, -1.0);
+    let nudged = moved(7.1, -1.0);
     let expected = union(&held, &nudged, 0.6);
     assert!(sorted(&expected) != sorted(&union(&held, &nudged, 0.0)));
     p.anticipate(&mesh, &nudged, 0.6);
