@@ -8,7 +8,8 @@
 //! | file | what |
 //! |---|---|
 //! | `mod.rs` | the constrained ordering and `SaddleLdlt` |
-//! | `ordered.rs` | `OrderedLdlt`: analysis, factorisation, solves, supernodal passes; AMD orders |
+//! | `ordered.rs` | `OrderedLdlt`: analysis, factorisation, solves; AMD orders |
+//! | `ordered/passes.rs` | the supernodal passes (L⁻¹, L⁻ᵀ), subtrees on both cores |
 
 mod ordered;
 

@@ -16,6 +16,8 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
+mod passes;
+
 /// LDLᵀ without pivoting of P A Pᵀ for a fixed pattern of A and a fixed ordering. The
 /// analysis (permuted pattern, symbolic factorisation) is done once; each numeric
 /// factorisation writes its values straight into the permuted lower triangle, so faer has
@@ -34,6 +36,8 @@ pub struct OrderedLdlt {
     /// Factorisation and solve workspaces, kept between factorisations.
     scratch: MemBuffer,
     solve_scratch: MemBuffer,
+    /// The supernodes' subtrees passed in parallel (`passes.rs`).
+    split: passes::Split,
 }
 
 /// AMD on the graph whose vertex j has the sorted neighbours `idx[ptr[j]..ptr[j + 1]]`
@@ -192,7 +196,7 @@ impl OrderedLdlt {
         values.truncate(len);
         values.reserve_exact(len - values.len());
         values.resize(len, 0.0);
-        Ok(OrderedLdlt {
+        let mut ldlt = OrderedLdlt {
             fwd,
             permuted,
             permuted_values: vec![0.0; nnz],
@@ -201,7 +205,10 @@ impl OrderedLdlt {
             symbolic,
             scratch,
             solve_scratch,
-        })
+            split: passes::Split::default(),
+        };
+        ldlt.split = ldlt.split_of();
+        Ok(ldlt)
     }
 
     /// Factorises the symmetric matrix whose lower triangle (in the factorised order) takes
@@ -316,52 +323,6 @@ impl OrderedLdlt {
             let vals = &self.values[sym.col_ptr_for_val()[s]..sym.col_ptr_for_val()[s + 1]];
             (begin, end, rows, vals)
         })
-    }
-
-    /// y ← L⁻¹ y, y in the factorised order.
-    pub fn forward(&self, y: &mut [f64]) {
-        let mut tmp = vec![];
-        for (begin, end, rows, vals) in self.supernodes() {
-            let (c, ld) = (end - begin, end - begin + rows.len());
-            let yb = &mut y[begin..end];
-            for j in 0..c {
-                let xj = yb[j];
-                let col = &vals[j * ld + j + 1..j * ld + c];
-                for (yi, l) in yb[j + 1..].iter_mut().zip(col) {
-                    *yi -= l * xj;
-                }
-            }
-            tmp.clear();
-            tmp.resize(rows.len(), 0.0);
-            for j in 0..c {
-                let xj = y[begin + j];
-                let col = &vals[j * ld + c..(j + 1) * ld];
-                for (t, l) in tmp.iter_mut().zip(col) {
-                    *t += l * xj;
-                }
-            }
-            for (&r, t) in rows.iter().zip(&tmp) {
-                y[r] -= t;
-            }
-        }
-    }
-
-    /// y ← L⁻ᵀ y, y in the factorised order.
-    pub fn backward(&self, y: &mut [f64]) {
-        let mut tmp = vec![];
-        for (begin, end, rows, vals) in self.supernodes().rev() {
-            let (c, ld) = (end - begin, end - begin + rows.len());
-            tmp.clear();
-            tmp.extend(rows.iter().map(|&r| y[r]));
-            for j in 0..c {
-                y[begin + j] -= dot(&vals[j * ld + c..(j + 1) * ld], &tmp);
-            }
-            let yb = &mut y[begin..end];
-            for j in (0..c).rev() {
-                let below = dot(&vals[j * ld + j + 1..j * ld + c], &yb[j + 1..]);
-                yb[j] -= below;
-            }
-        }
     }
 
     /// The pivots D (in the factorised order).
