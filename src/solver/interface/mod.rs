@@ -47,6 +47,10 @@ const MAX_INTERFACE: usize = 10_000;
 
 const NONE: usize = usize::MAX;
 
+/// Factors smaller than this many entries are factorised on one core (faer's parallel
+/// kernels pay in large supernodes only: SSNP154 A at 98k unknowns, no gain).
+const MIN_PARALLEL_FACTOR: usize = 1 << 24;
+
 pub struct InterfaceSolver {
     n: usize,
     /// The unknowns from this one on are multipliers (n: none known, then the interface
@@ -225,13 +229,22 @@ impl InterfaceSolver {
         // the blocks' orderings and analyses, in parallel
         let mut factors = storage.factors;
         factors.resize_with(parts.len(), Vec::new);
-        let blocks = parts
+        let mut blocks = parts
             .into_par_iter()
             .zip(factors)
             .map(|((unknowns, interior, block_gamma), values)| {
                 Block::new(a, unknowns, interior, block_gamma, values)
             })
             .collect::<Result<Vec<Block>>>()?;
+        // The largest block, when it holds most of the factors' entries, is factorised with
+        // faer's parallel kernels: the smaller blocks finish early and leave it alone.
+        let entries: Vec<usize> = blocks.iter().map(|b| b.ldlt.entries()).collect();
+        let total: usize = entries.iter().sum();
+        if let Some((big, &most)) = entries.iter().enumerate().max_by_key(|&(_, &e)| e) {
+            if 2 * most > total && most >= MIN_PARALLEL_FACTOR {
+                blocks[big].ldlt.factor_in_parallel();
+            }
+        }
         let gamma_entries = gamma_entries(a, &gamma);
         Ok(InterfaceSolver {
             n,

@@ -436,4 +436,35 @@ mod tests {
             .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
         assert!(err < 1e-12, "residual {err}");
     }
+
+    /// A factorisation with faer's parallel kernels solves as the sequential one does.
+    #[test]
+    fn a_factorisation_in_parallel_solves_the_system() {
+        let a = grid(200);
+        let n = a.n;
+        let b: Vec<f64> = (0..n).map(|i| (0.61 * i as f64).cos()).collect();
+        let mut solutions = vec![];
+        for parallel in [false, true] {
+            let mut f = OrderedLdlt::new(&a, leading_order(&a, n).unwrap()).unwrap();
+            if parallel {
+                f.factor_in_parallel();
+            }
+            f.factor_with(|p, _, _| a.values[p]).unwrap();
+            let mut x = b.clone();
+            f.solve(&mut x);
+            let mut ax = vec![0.0; n];
+            a.mul_vec(&x, &mut ax);
+            let err = ax
+                .iter()
+                .zip(&b)
+                .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
+            assert!(err < 1e-12, "parallel {parallel}: residual {err}");
+            solutions.push(x);
+        }
+        let diff = solutions[0]
+            .iter()
+            .zip(&solutions[1])
+            .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
+        assert!(diff < 1e-12, "the two solutions differ by {diff}");
+    }
 }
