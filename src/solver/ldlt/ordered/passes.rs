@@ -390,6 +390,20 @@ mod tests {
         SparseMatrix::from_entries(m * m, &entries)
     }
 
+    /// Runs `pass` on `y` with the factor's split (the result left in `y`) and without it,
+    /// and checks that the two give the same bits.
+    fn same_bits_both_ways(f: &mut OrderedLdlt, y: &mut [f64], pass: fn(&OrderedLdlt, &mut [f64])) {
+        let split = std::mem::take(&mut f.split);
+        let mut sequential = y.to_vec();
+        pass(f, &mut sequential);
+        f.split = split;
+        pass(f, y);
+        assert!(y
+            .iter()
+            .zip(&sequential)
+            .all(|(u, v)| u.to_bits() == v.to_bits()));
+    }
+
     /// The passes with subtrees in parallel give the sequential passes' results bit for
     /// bit, and solve the system.
     #[test]
@@ -402,27 +416,11 @@ mod tests {
         assert!(f.split.subtrees.len() >= 2, "the factor is split");
         let b: Vec<f64> = (0..n).map(|i| (0.37 * i as f64).sin()).collect();
         let mut y: Vec<f64> = f.order().iter().map(|&i| b[i]).collect();
-        let split = std::mem::take(&mut f.split);
-        let mut sequential = y.clone();
-        f.forward(&mut sequential);
-        f.split = split;
-        f.forward(&mut y);
-        assert!(y
-            .iter()
-            .zip(&sequential)
-            .all(|(u, v)| u.to_bits() == v.to_bits()));
+        same_bits_both_ways(&mut f, &mut y, OrderedLdlt::forward);
         for (v, d) in y.iter_mut().zip(f.pivots()) {
             *v /= d;
         }
-        let split = std::mem::take(&mut f.split);
-        let mut sequential = y.clone();
-        f.backward(&mut sequential);
-        f.split = split;
-        f.backward(&mut y);
-        assert!(y
-            .iter()
-            .zip(&sequential)
-            .all(|(u, v)| u.to_bits() == v.to_bits()));
+        same_bits_both_ways(&mut f, &mut y, OrderedLdlt::backward);
         // and it is the solution
         let mut x = vec![0.0; n];
         for (pos, &i) in f.order().iter().enumerate() {
