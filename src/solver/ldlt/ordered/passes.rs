@@ -46,12 +46,12 @@ pub(super) struct Split {
 }
 
 impl Split {
-    /// From the supernodes' column ranges (`begin[s]..end[s]`, increasing), their first
-    /// row below the diagonal block (None: a root) and their numbers of entries.
-    pub(super) fn new(
+    /// From the supernodes' column ranges (`begin[s]..end[s]`, increasing), their rows
+    /// below the diagonal block (`rows(s)`) and their numbers of entries.
+    pub(super) fn new<'r>(
         begin: &[usize],
         end: &[usize],
-        first_row: &[Option<usize>],
+        rows: impl Fn(usize) -> &'r [usize],
         entries: &[usize],
     ) -> Split {
         let ns = begin.len();
@@ -59,13 +59,16 @@ impl Split {
         if ns < 2 || total < MIN_PARALLEL_ENTRIES {
             return Split::default();
         }
-        // the supernode of each column, then each supernode's parent
+        // the supernode of each column, then each supernode's parent (that of its first row
+        // below the diagonal block)
         let n = end[ns - 1];
         let mut node_of = vec![0; n];
         for s in 0..ns {
             node_of[begin[s]..end[s]].fill(s);
         }
-        let parent: Vec<Option<usize>> = first_row.iter().map(|r| r.map(|r| node_of[r])).collect();
+        let parent: Vec<Option<usize>> = (0..ns)
+            .map(|s| rows(s).iter().min().map(|&r| node_of[r]))
+            .collect();
         // subtree entries, size and first supernode (children come before their parent)
         let mut work = entries.to_vec();
         let mut size = vec![1usize; ns];
@@ -105,6 +108,22 @@ impl Split {
             })
             .collect();
         subtrees.sort_by_key(|t| t.first);
+        // Each subtree must be independent of the rest: no supernode outside it has a row
+        // among its columns (the factor's structure gives that; checked, as the passes'
+        // results rest on it). Otherwise the passes stay sequential.
+        let mut subtree_of = vec![usize::MAX; ns];
+        for (i, t) in subtrees.iter().enumerate() {
+            subtree_of[t.first..t.last].fill(i);
+        }
+        let independent = (0..ns).all(|s| {
+            rows(s).iter().all(|&r| {
+                let owner = subtree_of[node_of[r]];
+                owner == usize::MAX || owner == subtree_of[s]
+            })
+        });
+        if !independent {
+            return Split::default();
+        }
         // (worth it only when the subtrees hold most of the work)
         let parallel: usize = subtrees.iter().map(|t| work[t.last - 1]).sum();
         if subtrees.len() < 2 || 2 * parallel < total {
@@ -122,17 +141,13 @@ impl OrderedLdlt {
         };
         let ns = sym.n_supernodes();
         let (begin, end) = (&sym.supernode_begin()[..ns], &sym.supernode_end()[..ns]);
-        let first_row: Vec<Option<usize>> = (0..ns)
-            .map(|s| {
-                sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]]
-                    .first()
-                    .copied()
-            })
-            .collect();
+        let rows = |s: usize| {
+            &sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]]
+        };
         let entries: Vec<usize> = (0..ns)
             .map(|s| sym.col_ptr_for_val()[s + 1] - sym.col_ptr_for_val()[s])
             .collect();
-        Split::new(begin, end, &first_row, &entries)
+        Split::new(begin, end, rows, &entries)
     }
 
     /// Supernode s: (first column, past-the-end column, rows below the diagonal block,
@@ -338,6 +353,14 @@ mod tests {
         out
     }
 
+    /// Each supernode's rows: its parent's column alone.
+    fn as_rows(first_row: &[Option<usize>]) -> Vec<Vec<usize>> {
+        first_row
+            .iter()
+            .map(|r| r.iter().copied().collect())
+            .collect()
+    }
+
     #[test]
     fn a_tree_is_cut_into_contiguous_subtrees_below_its_top() {
         // 16 leaves of 2^16 entries under 15 nodes of one: each subtree of two leaves and
@@ -347,7 +370,8 @@ mod tests {
         let (begin, end): (Vec<usize>, Vec<usize>) = (0..ns).map(|s| (s, s + 1)).unzip();
         let leaf = |s: usize| first_row.iter().all(|&r| r != Some(s));
         let entries: Vec<usize> = (0..ns).map(|s| if leaf(s) { 1 << 16 } else { 1 }).collect();
-        let split = Split::new(&begin, &end, &first_row, &entries);
+        let rows = as_rows(&first_row);
+        let split = Split::new(&begin, &end, |s| &rows[s], &entries);
         assert_eq!(split.subtrees.len(), 8, "{:?}", split.subtrees);
         for (i, t) in split.subtrees.iter().enumerate() {
             // two leaves, then their parent
@@ -357,17 +381,27 @@ mod tests {
             assert!(i == 0 || split.subtrees[i - 1].last <= t.first);
         }
         // a factor too small is passed sequentially
-        let small = Split::new(&begin, &end, &first_row, &vec![1; ns]);
+        let small = Split::new(&begin, &end, |s| &rows[s], &vec![1; ns]);
         assert_eq!(small.subtrees, Vec::<Subtree>::new());
         // a subtree out of postorder is cut further: leaves 0 and 2 under 3, 1 and 3 under
         // the root 4 (the subtree of 3 is not contiguous)
         let first_row = vec![Some(3), Some(4), Some(3), Some(4), None];
         let (begin, end): (Vec<usize>, Vec<usize>) = (0..5).map(|s| (s, s + 1)).unzip();
         let entries = vec![1, 1 << 20, 1, 1, 1];
-        let split = Split::new(&begin, &end, &first_row, &entries);
+        let rows = as_rows(&first_row);
+        let split = Split::new(&begin, &end, |s| &rows[s], &entries);
         let single: Vec<(usize, usize)> =
             split.subtrees.iter().map(|t| (t.first, t.last)).collect();
         assert_eq!(single, vec![(0, 1), (1, 2), (2, 3)]);
+        // a supernode with a row in another subtree's columns (not the structure of a
+        // factor): the passes stay sequential
+        let first_row = binary_tree(4);
+        let (begin, end): (Vec<usize>, Vec<usize>) = (0..ns).map(|s| (s, s + 1)).unzip();
+        let mut rows = as_rows(&first_row);
+        let entries: Vec<usize> = (0..ns).map(|s| if leaf(s) { 1 << 16 } else { 1 }).collect();
+        rows[0].push(5);
+        let split = Split::new(&begin, &end, |s| &rows[s], &entries);
+        assert_eq!(split.subtrees, Vec::<Subtree>::new());
     }
 
     /// A 5-point Laplacian on an m × m grid plus a shift (symmetric positive definite).
