@@ -335,19 +335,28 @@ impl OrderedLdlt {
         }
     }
 
-    /// The supernodes of the factor: (first column, past-the-end column, rows below the
-    /// diagonal block, column-major values of the block and the rows below).
-    fn supernodes(&self) -> impl DoubleEndedIterator<Item = (usize, usize, &[usize], &[f64])> {
+    /// Supernode s: (first column, past-the-end column, rows below the diagonal block,
+    /// column-major values of the block and the rows below).
+    fn supernode(&self, s: usize) -> (usize, usize, &[usize], &[f64]) {
         let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
             unreachable!("the analysis forces the supernodal kernel")
         };
-        (0..sym.n_supernodes()).map(move |s| {
-            let (begin, end) = (sym.supernode_begin()[s], sym.supernode_end()[s]);
-            let rows =
-                &sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]];
-            let vals = &self.values[sym.col_ptr_for_val()[s]..sym.col_ptr_for_val()[s + 1]];
-            (begin, end, rows, vals)
-        })
+        let (begin, end) = (sym.supernode_begin()[s], sym.supernode_end()[s]);
+        let rows = &sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]];
+        let vals = &self.values[sym.col_ptr_for_val()[s]..sym.col_ptr_for_val()[s + 1]];
+        (begin, end, rows, vals)
+    }
+
+    fn n_supernodes(&self) -> usize {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
+            unreachable!("the analysis forces the supernodal kernel")
+        };
+        sym.n_supernodes()
+    }
+
+    /// The supernodes in order (see `supernode`).
+    fn supernodes(&self) -> impl Iterator<Item = (usize, usize, &[usize], &[f64])> {
+        (0..self.n_supernodes()).map(|s| self.supernode(s))
     }
 
     /// The pivots D (in the factorised order).

@@ -141,32 +141,11 @@ impl OrderedLdlt {
         };
         let ns = sym.n_supernodes();
         let (begin, end) = (&sym.supernode_begin()[..ns], &sym.supernode_end()[..ns]);
-        let rows = |s: usize| {
-            &sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]]
-        };
+        let rows = |s: usize| self.supernode(s).2;
         let entries: Vec<usize> = (0..ns)
             .map(|s| sym.col_ptr_for_val()[s + 1] - sym.col_ptr_for_val()[s])
             .collect();
         Split::new(begin, end, rows, &entries)
-    }
-
-    /// Supernode s: (first column, past-the-end column, rows below the diagonal block,
-    /// column-major values of the block and the rows below).
-    fn supernode(&self, s: usize) -> (usize, usize, &[usize], &[f64]) {
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
-            unreachable!("the analysis forces the supernodal kernel")
-        };
-        let (begin, end) = (sym.supernode_begin()[s], sym.supernode_end()[s]);
-        let rows = &sym.row_idx()[sym.col_ptr_for_row_idx()[s]..sym.col_ptr_for_row_idx()[s + 1]];
-        let vals = &self.values[sym.col_ptr_for_val()[s]..sym.col_ptr_for_val()[s + 1]];
-        (begin, end, rows, vals)
-    }
-
-    fn n_supernodes(&self) -> usize {
-        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.raw() else {
-            unreachable!("the analysis forces the supernodal kernel")
-        };
-        sym.n_supernodes()
     }
 
     /// y ← L⁻¹ y, y in the factorised order.
@@ -424,6 +403,15 @@ mod tests {
         SparseMatrix::from_entries(m * m, &entries)
     }
 
+    /// max |A x − b|.
+    fn residual(a: &SparseMatrix, x: &[f64], b: &[f64]) -> f64 {
+        let mut ax = vec![0.0; a.n];
+        a.mul_vec(x, &mut ax);
+        ax.iter()
+            .zip(b)
+            .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()))
+    }
+
     /// Runs `pass` on `y` with the factor's split (the result left in `y`) and without it,
     /// and checks that the two give the same bits.
     fn same_bits_both_ways(f: &mut OrderedLdlt, y: &mut [f64], pass: fn(&OrderedLdlt, &mut [f64])) {
@@ -460,12 +448,7 @@ mod tests {
         for (pos, &i) in f.order().iter().enumerate() {
             x[i] = y[pos];
         }
-        let mut ax = vec![0.0; n];
-        a.mul_vec(&x, &mut ax);
-        let err = ax
-            .iter()
-            .zip(&b)
-            .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
+        let err = residual(&a, &x, &b);
         assert!(err < 1e-12, "residual {err}");
     }
 
@@ -484,12 +467,7 @@ mod tests {
             f.factor_with(|p, _, _| a.values[p]).unwrap();
             let mut x = b.clone();
             f.solve(&mut x);
-            let mut ax = vec![0.0; n];
-            a.mul_vec(&x, &mut ax);
-            let err = ax
-                .iter()
-                .zip(&b)
-                .fold(0.0f64, |e, (u, v)| e.max((u - v).abs()));
+            let err = residual(&a, &x, &b);
             assert!(err < 1e-12, "parallel {parallel}: residual {err}");
             solutions.push(x);
         }
