@@ -50,6 +50,18 @@ impl Merits {
         }
     }
 
+    /// Whether the last `n` merits, the current point's `current` the last of them, have
+    /// brought the best one down by at least `ratio` (true while there are not more than
+    /// `n`): a shortcut that converges linearly (frozen bodies) is still contracting.
+    pub fn shrinks(&self, current: f64, n: usize, ratio: f64) -> bool {
+        let k = self.0.len() + 1;
+        k <= n || {
+            let min = |v: &[f64]| v.iter().copied().fold(f64::INFINITY, f64::min);
+            let before = min(&self.0[..k - n]);
+            min(&self.0[k - n..]).min(current) <= ratio * before
+        }
+    }
+
     /// The non-monotone reference: the largest of the last `MEMORY` merits.
     pub fn reference(&self) -> Option<f64> {
         let n = self.0.len();
@@ -120,4 +132,54 @@ pub fn backtrack(
     };
     x.copy_from_slice(&trial);
     Ok(Some(alpha))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Merits;
+
+    fn merits(v: &[f64]) -> Merits {
+        let mut m = Merits::default();
+        for &x in v {
+            m.push(x);
+        }
+        m
+    }
+
+    #[test]
+    fn a_swing_between_two_points_does_not_shrink() {
+        // frozen corrections swinging: 3.10e-3, 3.24e-3, … after a best of 5.1e-3
+        let m = merits(&[5.1e-3, 5.3e-3, 3.8e-3, 4.0e-3, 3.4e-3, 3.5e-3]);
+        assert!(!m.shrinks(3.3e-3, 4, 0.5));
+        // nor does a steady creep of 1 % a point
+        let creep: Vec<f64> = (0..8).map(|k| 1e-2 * 0.99f64.powi(k)).collect();
+        assert!(!merits(&creep).shrinks(1e-2 * 0.99f64.powi(8), 4, 0.5));
+    }
+
+    #[test]
+    fn linear_convergence_shrinks() {
+        // a contraction of 0.8 a point halves the best in four
+        let m = merits(&[1.0, 0.8, 0.64, 0.512]);
+        assert!(m.shrinks(0.41, 4, 0.5));
+        // the best of the window counts, wherever it is in it
+        let m = merits(&[1.0, 0.9, 0.3, 0.9]);
+        assert!(m.shrinks(0.95, 4, 0.5));
+        // measured against the best before the window, not the window's first point
+        let m = merits(&[0.2, 1.0, 0.9, 0.8, 0.7]);
+        assert!(!m.shrinks(0.15, 4, 0.5));
+    }
+
+    #[test]
+    fn too_few_points_say_nothing() {
+        assert!(merits(&[1.0, 1.0, 1.0]).shrinks(1.0, 4, 0.5));
+        assert!(!merits(&[1.0, 1.0, 1.0, 1.0]).shrinks(1.0, 4, 0.5));
+    }
+
+    #[test]
+    fn stalled_and_reference() {
+        let m = merits(&[1.0, 0.5, 0.6, 0.7]);
+        assert!(m.stalled(2));
+        assert!(!m.stalled(3));
+        assert_eq!(m.reference(), Some(0.7));
+    }
 }

@@ -30,6 +30,9 @@ impl super::super::pair::ContactPair for PointToSegment {
     fn pattern_generation(&self) -> usize {
         self.candidates_generation
     }
+    fn status_signature(&self) -> u64 {
+        self.status_signature()
+    }
     fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
         self.anticipate(mesh, u, reach)
     }

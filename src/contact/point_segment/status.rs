@@ -110,6 +110,16 @@ impl PointToSegment {
         changes
     }
 
+    /// A hash of the points' statuses and pairings (a cycle of active-set re-solves).
+    pub(super) fn status_signature(&self) -> u64 {
+        use std::hash::{Hash, Hasher};
+        let mut h = std::collections::hash_map::DefaultHasher::new();
+        for p in &self.points {
+            p.active.hash(&mut h);
+        }
+        h.finish()
+    }
+
     pub fn commit(&mut self, u: &[f64], lam: &[f64]) {
         self.save_start();
         self.u_start.copy_from_slice(u);

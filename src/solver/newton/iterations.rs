@@ -18,6 +18,9 @@ use crate::error::{Error, Result};
 /// unless friction branches still switch (see `frozen` below).
 const FROZEN_BELOW: f64 = 0.1;
 const FROZEN_FINISH: f64 = 1e2;
+/// Frozen-body corrections in a row after which they must have halved the step's best
+/// residual to go on (see `stalled` below).
+const FROZEN_STALL: usize = 8;
 
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
@@ -90,6 +93,7 @@ pub(super) fn iterate_step(
     let mut resolves = 0;
     let mut linearised_resolves = 0;
     let mut linearised_seen: Vec<u64> = vec![];
+    let mut resolved_with: Vec<u64> = vec![];
     // the plain Newton iterate a re-solve replaced
     let mut before_resolve: Option<Vec<f64>> = None;
     // the correction of the plain Newton iterate that started this point's re-solves
@@ -182,9 +186,27 @@ pub(super) fn iterate_step(
         let below = (it == 0 && last_converged)
             || prev.is_some_and(|p| p < FROZEN_BELOW)
             || (last_frozen && norms.relative() < FROZEN_BELOW);
+        // Frozen corrections converge linearly at best; while statuses or friction
+        // branches change they are kept whatever the residual does, and they may then
+        // swing between two points for good (SSNP154 D at 960k unknowns on another Newton
+        // path: 40 frozen corrections between 3.10e-3 and 3.24e-3, the step cut at 50
+        // iterations). After FROZEN_STALL of them in a row that have not halved the best
+        // residual, the next correction is a full one. (Settling statuses make frozen
+        // corrections rise and fall: D's second step at 960k, 1.7e-2 → 2.5e-2 → 6.3e-3
+        // over six, and on to the tolerance; four in a row would have cut that short.)
+        let frozen_run = step
+            .iterations
+            .iter()
+            .rev()
+            .filter(|i| !i.active_set_resolve)
+            .take_while(|i| i.frozen_bodies)
+            .count();
+        let stalled =
+            frozen_run >= FROZEN_STALL && !merits.shrinks(norms.relative(), FROZEN_STALL, 0.5);
         let mut frozen = frozen_candidate
             && below
             && !raised
+            && !stalled
             && !met
             && (branches_switched || norms.relative() > FROZEN_FINISH * settings.tolerance);
         if frozen_candidate && !frozen && !met {
@@ -474,6 +496,11 @@ pub(super) fn iterate_step(
         linearised_resolves = 0;
         linearised_seen.clear();
         let before = changes;
+        // the statuses solved with from this linearisation point (a cycle, below)
+        if !resolve {
+            resolved_with.clear();
+        }
+        resolved_with.push(problem.status_signature());
         let generation = problem.pattern_generation();
         changes = problem.update_status(x, lambda)?;
         // Re-solves settle a few statuses. One that changes more of them than the one
@@ -528,12 +555,15 @@ pub(super) fn iterate_step(
         // the contact interface: the bodies' tangent and factorisations are those of
         // this point, only the contact terms and the interface are redone. A few in a
         // row at most (cycling statuses), then the step moves on.
-        // The formulation decides whether that pays (mortar: no).
+        // The formulation decides whether that pays (mortar: no). Not when the new
+        // statuses are ones already solved with from this point (a cycle: one node's points
+        // on, off, on …; SSNP154 D at 93k unknowns, the first step).
         resolve = changes > 0
             && !resolves_off
             && resolves < MAX_RESOLVES
             && problem.active_set_resolves()
-            && lin.condenses_contact();
+            && lin.condenses_contact()
+            && !resolved_with.contains(&problem.status_signature());
         if resolve {
             resolves += 1;
             if resolves == 1 {
