@@ -110,7 +110,8 @@ impl PointToSegment {
         changes
     }
 
-    /// A hash of the points' statuses and pairings (a cycle of active-set re-solves).
+    /// A hash of the points' contact statuses, their active flags alone (what a status
+    /// update counts as changes): a cycle of active-set re-solves.
     pub(super) fn status_signature(&self) -> u64 {
         use std::hash::{Hash, Hasher};
         let mut h = std::collections::hash_map::DefaultHasher::new();
