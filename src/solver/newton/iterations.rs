@@ -496,11 +496,15 @@ pub(super) fn iterate_step(
         linearised_resolves = 0;
         linearised_seen.clear();
         let before = changes;
-        // the statuses solved with from this linearisation point (a cycle, below)
+        // the statuses solved with from this linearisation point (a cycle, below), where
+        // re-solves may follow at all
+        let may_resolve = problem.active_set_resolves() && lin.condenses_contact();
         if !resolve {
             resolved_with.clear();
         }
-        resolved_with.push(problem.status_signature());
+        if may_resolve {
+            resolved_with.push(problem.status_signature());
+        }
         let generation = problem.pattern_generation();
         changes = problem.update_status(x, lambda)?;
         // Re-solves settle a few statuses. One that changes more of them than the one
@@ -561,8 +565,7 @@ pub(super) fn iterate_step(
         resolve = changes > 0
             && !resolves_off
             && resolves < MAX_RESOLVES
-            && problem.active_set_resolves()
-            && lin.condenses_contact()
+            && may_resolve
             && !resolved_with.contains(&problem.status_signature());
         if resolve {
             resolves += 1;
