@@ -185,6 +185,17 @@ impl LinearSolver {
                 Pattern::Copy(a.col_ptr.clone(), a.row_idx.clone())
             });
         }
+        // a grown pattern taken while its new entries were zero: one of them no longer is,
+        // or the bodies are to be factorised anyway
+        if let Some(Factorisation::Interface(s)) = &self.ldlt {
+            if !s.stands(a) {
+                self.storage = self
+                    .ldlt
+                    .take()
+                    .map(Factorisation::into_storage)
+                    .unwrap_or_default();
+            }
+        }
         match self.method {
             Method::Cholesky => {
                 let mat = a.as_faer();
@@ -260,13 +271,15 @@ impl LinearSolver {
     }
 
     /// A changed pattern that the interface condensation in hand takes as its own (see
-    /// `InterfaceSolver::rebind`): no new analysis. (A condensation exists only on the
+    /// `InterfaceSolver::rebind`, and `rebind_grown` for a grown one whose new entries are
+    /// zero): no new analysis. (A condensation exists only on the
     /// saddle-point path without LU fallback.)
     fn rebind(&mut self, a: &SparseMatrix) -> bool {
         let Some(Factorisation::Interface(s)) = self.ldlt.as_mut() else {
             return false;
         };
-        interface_searched(a, self.n_primal).is_some_and(|in_gamma| s.rebind(a, &in_gamma))
+        interface_searched(a, self.n_primal)
+            .is_some_and(|in_gamma| s.rebind(a, &in_gamma) || s.rebind_grown(a, &in_gamma))
     }
 
     fn factor_lu(&mut self, a: &SparseMatrix) -> Result<()> {

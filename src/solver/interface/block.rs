@@ -125,24 +125,22 @@ impl Block {
     /// Takes `a`, a matrix of another pattern, as this block's: true when the block's
     /// entries in it are those analysed (the pattern changed elsewhere, between interface
     /// unknowns: a contact pattern change), the factor's entries then labelled by their
-    /// positions in `a`. The last factorisation and its values are kept: when the block's
-    /// values in `a` are the same, the next `factor` keeps them. False leaves the block
-    /// unusable (its caller analyses `a` anew). (No copy of the block's pattern is made:
-    /// fresh pages cost more than the comparison at 350k unknowns.)
-    pub(super) fn rebind(&mut self, a: &SparseMatrix) -> bool {
+    /// positions in `a`. With `beyond`, entries of `a` the analysis does not hold are
+    /// passed over: their caller has found them zero (`growth.rs`). The last factorisation
+    /// and its values are kept: when the block's values in `a` are the same, the next
+    /// `factor` keeps them. False leaves the block unusable (its caller analyses `a`
+    /// anew). (No copy of the block's pattern is made: fresh pages cost more than the
+    /// comparison at 350k unknowns.)
+    pub(super) fn rebind(&mut self, a: &SparseMatrix, beyond: bool) -> bool {
         let interior = self.interior;
-        // position in the factorised order of each global unknown of the block
-        let mut at = vec![NONE; a.n];
-        for (j, &l) in self.ldlt.order().iter().enumerate() {
-            at[self.unknowns[l]] = j;
-        }
+        let at = self.positions(a.n);
         let unknowns = &self.unknowns;
         let mut diagonal = vec![NONE; interior];
         // The block's matrix (see `local_pattern`): in an interior column, its interior rows
         // and its interface rows; in an interface column, its interior rows and its
         // diagonal (NONE). The interface unknowns are ordered last, so the lower triangle of
         // an interface column holds its diagonal alone.
-        let rebound = self.ldlt.rebind_with(|j, l, out| {
+        let rebound = self.ldlt.rebind_with(beyond, |j, l, out| {
             if l >= interior {
                 out.push((j, NONE));
                 return;
@@ -167,19 +165,41 @@ impl Block {
         true
     }
 
+    /// Position in the factorised order of each global unknown of the block (NONE for the
+    /// others), `n` unknowns in all.
+    pub(super) fn positions(&self, n: usize) -> Vec<usize> {
+        let mut at = vec![NONE; n];
+        for (j, &l) in self.ldlt.order().iter().enumerate() {
+            at[self.unknowns[l]] = j;
+        }
+        at
+    }
+
+    /// Whether the analysed pattern holds the entry between the unknowns at positions i
+    /// and j of the factorised order (`positions`).
+    pub(super) fn holds(&self, i: usize, j: usize) -> bool {
+        self.ldlt.holds(i.max(j), i.min(j))
+    }
+
+    /// Whether the block's values in `a` are those of its last factorisation (which then
+    /// stands). Each factorised entry is labelled by its position in A (NONE: the shifted
+    /// diagonal of an interface unknown).
+    pub(super) fn values_unchanged(&self, a: &SparseMatrix) -> bool {
+        self.factored
+            && self
+                .ldlt
+                .origins()
+                .iter()
+                .zip(self.ldlt.factored_values())
+                .all(|(&p, &v)| p == NONE || a.values[p] == v)
+    }
+
     /// Factorises the block's matrix in `a`; false when its values are those factorised
     /// last (nothing to do).
     pub(super) fn factor(&mut self, a: &SparseMatrix) -> Result<bool> {
         // Unchanged values (a Newton iteration that updated the contact terms only, which
-        // live in Γ × Γ): the factorisation stands. Each factorised entry is labelled by its
-        // position in A (NONE: the shifted diagonal of an interface unknown).
-        let origins = self.ldlt.origins();
-        let unchanged = self.factored
-            && origins
-                .iter()
-                .zip(self.ldlt.factored_values())
-                .all(|(&p, &v)| p == NONE || a.values[p] == v);
-        if unchanged {
+        // live in Γ × Γ): the factorisation stands.
+        if self.values_unchanged(a) {
             return Ok(false);
         }
         self.factored = false; // until this factorisation succeeds

@@ -20,10 +20,12 @@
 //! interface matrix's LU), `update.rs` (an active-set re-solve as a low-rank change of the
 //! last LU, where T changes in a few rows only), `reduced.rs` (T reduced onto the unknowns
 //! that carry contact terms, so that a correction with the bodies' factorisations kept
-//! costs an LU of those alone).
+//! costs an LU of those alone), `growth.rs` (a grown contact pattern taken while its new
+//! entries are zero).
 
 mod block;
 mod dense_lu;
+mod growth;
 mod reduced;
 mod update;
 
@@ -77,6 +79,11 @@ pub struct InterfaceSolver {
     /// update), and costs memory (`reduced.rs`).
     lus_with_bodies_kept: usize,
     lus_last_interval: usize,
+    /// Positions in A of entries this analysis does not hold, all zero when it took A's
+    /// pattern, and the unknowns that joined the interface then (`growth.rs`): it stands
+    /// while those entries stay zero and these unknowns' entries symmetric (`stands`).
+    ignored: Vec<usize>,
+    joined: Vec<usize>,
 }
 
 /// The interface of `a` (first `np` unknowns primal; `transpose[p]` the position of the
@@ -262,6 +269,8 @@ impl InterfaceSolver {
             update: None,
             lus_with_bodies_kept: 0,
             lus_last_interval: 0,
+            ignored: vec![],
+            joined: vec![],
         })
     }
 
@@ -276,6 +285,12 @@ impl InterfaceSolver {
         if a.n != self.n {
             return false;
         }
+        // (the interface first: its partition costs a pass over A)
+        let same_gamma = in_gamma.iter().filter(|&&g| g).count() == self.gamma.len()
+            && self.gamma.iter().all(|&g| in_gamma[g]);
+        if !same_gamma {
+            return false;
+        }
         let Partition { gamma, parts } = partition(a, in_gamma);
         let same_blocks = gamma == self.gamma
             && parts.len() == self.blocks.len()
@@ -288,19 +303,14 @@ impl InterfaceSolver {
         let rebound = self
             .blocks
             .par_iter_mut()
-            .map(|b| b.rebind(a))
+            .map(|b| b.rebind(a, false))
             .collect::<Vec<bool>>();
         if rebound.contains(&false) {
             return false;
         }
-        let entries = gamma_entries(a, &self.gamma);
-        let old = std::mem::replace(&mut self.gamma_entries, entries);
-        self.relabel_factorised(&old);
-        if let Some(r) = &mut self.base.reduction {
-            // (its values are by the old entries)
-            r.values.clear();
-        }
-        self.update = None;
+        self.ignored.clear();
+        self.joined.clear();
+        self.take_interface_entries(a);
         true
     }
 

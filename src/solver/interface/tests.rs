@@ -215,6 +215,86 @@ fn a_pattern_changed_between_interface_unknowns_keeps_the_analysis() {
 }
 
 #[test]
+fn a_grown_pattern_with_zero_new_entries_keeps_the_analysis_while_they_stay_zero() {
+    let len = 30;
+    let m = 2 * len;
+    let a = two_bodies(len);
+    let analysed = || {
+        let mut s =
+            InterfaceSolver::new(&a, interface_searched(&a, m).unwrap(), Storage::default())
+                .unwrap();
+        assert!(solve_error(&mut s, &a) < 1e-12);
+        s
+    };
+    let with = |extra: &[(usize, usize, f64)]| {
+        let mut e = two_bodies_entries(len);
+        e.extend_from_slice(extra);
+        SparseMatrix::from_entries(m + 3, &e)
+    };
+    // the open point comes within reach of two unknowns inside the first chain, and of
+    // one inside the second (couplings in the pattern, zero: not in contact), and the
+    // contact tangent couples two body unknowns not coupled before (zero too)
+    let reach = [
+        (m + 2, 7, 0.0),
+        (7, m + 2, 0.0),
+        (m + 2, 8, 0.0),
+        (8, m + 2, 0.0),
+        (m + 2, len + 9, 0.0),
+        (len + 9, m + 2, 0.0),
+        (7, 12, 0.0),
+        (12, 7, 0.0),
+    ];
+    let grown = with(&reach);
+    let in_gamma = interface_searched(&grown, m).unwrap();
+    assert!(in_gamma[7] && in_gamma[len + 9], "the interface grew");
+    let mut s = analysed();
+    assert!(!s.rebind(&grown, &in_gamma), "not the same blocks");
+    let mut s = analysed();
+    assert!(s.rebind_grown(&grown, &in_gamma));
+    assert!(s.stands(&grown));
+    s.factor(&grown).unwrap();
+    assert!(
+        s.blocks.iter().all(|b| b.last_forward.is_some()),
+        "the blocks' factorisations are kept"
+    );
+    let b: Vec<f64> = (0..grown.n).map(|i| (0.3 * i as f64).sin()).collect();
+    let res = solve_residual(&mut s, &grown, &b);
+    assert!(res < 1e-12, "max residual {res}");
+    // the open point's multiplier changes (an interface entry): the analysis stands
+    let mut again = grown.clone();
+    again.values[grown.position(m + 2, m + 2).unwrap()] = 3.0;
+    assert!(s.stands(&again));
+    let err = solve_error(&mut s, &again);
+    assert!(err < 1e-12, "max error {err}");
+    // any of the new entries no longer zero, or a joined unknown's entry no longer
+    // symmetric (either of the pair): a new analysis is needed
+    for (r, c) in [
+        (m + 2, 8),
+        (8, m + 2),
+        (len + 9, m + 2),
+        (12, 7),
+        (7, 6),
+        (6, 7),
+    ] {
+        let mut closing = again.clone();
+        closing.values[grown.position(r, c).unwrap()] = 0.5;
+        assert!(!s.stands(&closing), "entry ({r}, {c})");
+    }
+    // the bodies to be factorised anyway: a new analysis (it costs no more then)
+    let mut loaded = again.clone();
+    loaded.values[grown.position(3, 3).unwrap()] *= 1.5;
+    assert!(!s.stands(&loaded));
+    // a new entry not zero, or one against the bodies' last values: not taken
+    let mut closed = grown.clone();
+    closed.values[grown.position(m + 2, 7).unwrap()] = 1.0;
+    closed.values[grown.position(7, m + 2).unwrap()] = 1.0;
+    assert!(!analysed().rebind_grown(&closed, &in_gamma));
+    let mut moved = grown.clone();
+    moved.values[grown.position(3, 3).unwrap()] *= 1.5;
+    assert!(!analysed().rebind_grown(&moved, &in_gamma));
+}
+
+#[test]
 fn the_searched_interface_is_the_one_from_transpose_positions() {
     let a = two_bodies(30);
     let t = transpose_positions(&a);

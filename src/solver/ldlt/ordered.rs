@@ -292,12 +292,14 @@ impl OrderedLdlt {
     /// Takes a matrix of another pattern as the analysed one when the two are the same
     /// (in the analysed order): `column(j, c, out)` puts into `out` the entries of column j
     /// of its lower triangle in the factorised order (c: the matrix's column there), as
-    /// (row, label) in any order. Each entry
-    /// is then labelled by its label (what `factor_with` and `origins` give). False when
-    /// the patterns differ; the labels are then partly rewritten (the analysis is
-    /// unusable).
+    /// (row, label) in any order. Each entry is then labelled by its label (what
+    /// `factor_with` and `origins` give). With `beyond`, entries the analysed pattern does
+    /// not hold are passed over (their caller knows them to be zero) instead of refused.
+    /// False when an analysed entry is missing, or (without `beyond`) the patterns differ;
+    /// the labels are then partly rewritten (the analysis is unusable).
     pub fn rebind_with(
         &mut self,
+        beyond: bool,
         mut column: impl FnMut(usize, usize, &mut Vec<(usize, usize)>),
     ) -> bool {
         let mut col = vec![];
@@ -305,18 +307,32 @@ impl OrderedLdlt {
             col.clear();
             column(j, self.fwd[j], &mut col);
             let range = self.permuted.col_range(j);
-            if col.len() != range.len() {
+            if !beyond && col.len() != range.len() {
                 return false;
             }
             col.sort_unstable();
-            for (q, &(r, label)) in range.zip(&col) {
-                if self.permuted.row_idx()[q] != r {
+            let rows = &self.permuted.row_idx()[range.clone()];
+            let mut q = 0;
+            for &(r, label) in &col {
+                if q < rows.len() && rows[q] == r {
+                    self.origin[range.start + q] = label;
+                    q += 1;
+                } else if !beyond {
                     return false;
                 }
-                self.origin[q] = label;
+            }
+            if q != rows.len() {
+                return false;
             }
         }
         true
+    }
+
+    /// Whether the analysed pattern holds the entry at row i, column j of the factorised
+    /// order (i ≥ j).
+    pub fn holds(&self, i: usize, j: usize) -> bool {
+        let range = self.permuted.col_range(j);
+        self.permuted.row_idx()[range].binary_search(&i).is_ok()
     }
 
     /// Solves with the last factorisation, in place.
