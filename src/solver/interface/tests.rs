@@ -464,6 +464,10 @@ fn the_interface_matrix_reduced_onto_its_live_unknowns_solves_exactly() {
     let err = solve_error(&mut s, &first);
     assert!(err < 1e-12, "first factorisation: max error {err}");
     let red = s.base.reduction.as_ref().expect("reduced");
+    assert!(
+        red.passive_cholesky(),
+        "the bodies' terms alone on the passive part"
+    );
     // live: the tied unknowns and multipliers of ties 35–39 (35 next to 36); the other
     // open ties' multipliers are solved on their own
     assert_eq!(red.num_live(), 3 * 5);
@@ -517,7 +521,8 @@ fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
     let mut s = knowing_multipliers(&first, 2 * len, 1);
     let err = solve_error(&mut s, &first);
     assert!(err < 1e-12, "first factorisation: max error {err}");
-    assert!(s.base.reduction.as_ref().expect("reduced").keeps_lp());
+    let red = s.base.reduction.as_ref().expect("reduced");
+    assert!(red.keeps_lp() && !red.passive_cholesky());
     let a = with_skew(&(0..35).chain([37]).collect::<Vec<_>>());
     let err = solve_error(&mut s, &a);
     assert!(err < 1e-12, "live change: max error {err}");
@@ -526,5 +531,6 @@ fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
     let b = tied_chains(len, ties, &(0..36).collect::<Vec<_>>());
     let mut s = knowing_multipliers(&b, 2 * len, 1);
     assert!(solve_error(&mut s, &b) < 1e-12);
-    assert!(!s.base.reduction.as_ref().expect("reduced").keeps_lp());
+    let red = s.base.reduction.as_ref().expect("reduced");
+    assert!(!red.keeps_lp() && red.passive_cholesky());
 }
