@@ -461,8 +461,23 @@ impl InterfaceSolver {
         }
         if reduce {
             self.reduce(a, at, diagonal, values, &live);
-            return Ok(());
+        } else {
+            self.factor_whole(a, at, diagonal, values);
         }
+        Ok(())
+    }
+
+    /// Factorises the interface matrix of `a` whole (its kept unknowns at `at`, the
+    /// decoupled ones by their `diagonal`; A's interface `values`).
+    pub(super) fn factor_whole(
+        &mut self,
+        a: &SparseMatrix,
+        at: Vec<usize>,
+        diagonal: Vec<f64>,
+        values: Vec<f64>,
+    ) {
+        let k = self.gamma.len();
+        let base = &mut self.base;
         base.reduction = None;
         // The interface matrix of the kept unknowns, in the storage of the last LU (no
         // fresh pages to fault in at every Newton iteration).
@@ -478,7 +493,6 @@ impl InterfaceSolver {
         base.diagonal = diagonal;
         self.factorised = values;
         self.z.clear(k);
-        Ok(())
     }
 
     /// Takes `a`'s interface matrix as the one factorised plus a low-rank change, if the

@@ -46,8 +46,9 @@ mod tests {
     use faer::Mat;
 
     /// T x − b for the reduction of T (unknowns 4 and 5 live) with `diagonal` on T_PP's
-    /// diagonal, T symmetric but for T_LL; and whether T_PP went to Cholesky.
-    fn reduced_residual(diagonal: [f64; 4]) -> (f64, bool) {
+    /// diagonal, T symmetric but for T_LL and `skew` added to T_PP[0, 1]; and whether T_PP
+    /// went to Cholesky. None when the reduction declines (the whole LU then).
+    fn reduced_residual(diagonal: [f64; 4], skew: f64) -> Option<(f64, bool)> {
         let n = 6;
         let t = Mat::from_fn(n, n, |i, j| {
             if i == j {
@@ -63,7 +64,7 @@ mod tests {
                     -0.4
                 }
             } else {
-                0.3 / (1.0 + (i + j) as f64)
+                0.3 / (1.0 + (i + j) as f64) + if (i, j) == (0, 1) { skew } else { 0.0 }
             }
         });
         let mut blocks = Blocks::new(&[false, false, false, false, true, true]);
@@ -72,23 +73,27 @@ mod tests {
                 blocks.add(i, j, t[(i, j)]);
             }
         }
-        let red = blocks.finish(vec![]);
+        let red = blocks.finish(vec![])?;
         let b = Mat::from_fn(n, 1, |i, _| (1.3 * i as f64).sin() + 0.2);
         let mut x = b.clone();
         red.solve(&mut x);
         let r = &t * &x - &b;
         let res = (0..n).fold(0.0f64, |m, i| m.max(r[(i, 0)].abs()));
-        (res, red.passive_cholesky())
+        Some((res, red.passive_cholesky()))
     }
 
     #[test]
-    fn a_symmetric_passive_part_is_reduced_by_cholesky_or_else_by_lu() {
-        let (res, cholesky) = reduced_residual([2.0, 3.0, 1.5, 4.0]);
+    fn a_symmetric_passive_part_is_reduced_by_cholesky_an_unsymmetric_one_by_lu() {
+        let (res, cholesky) = reduced_residual([2.0, 3.0, 1.5, 4.0], 0.0).unwrap();
         assert!(cholesky, "positive definite");
         assert!(res < 1e-14, "max residual {res}");
-        let (res, cholesky) = reduced_residual([2.0, -3.0, 1.5, 4.0]);
-        assert!(!cholesky, "indefinite: LU");
+        let (res, cholesky) = reduced_residual([2.0, 3.0, 1.5, 4.0], 0.2).unwrap();
+        assert!(!cholesky, "not symmetric: LU");
         assert!(res < 1e-14, "max residual {res}");
+        assert!(
+            reduced_residual([2.0, -3.0, 1.5, 4.0], 0.0).is_none(),
+            "symmetric, indefinite: declined"
+        );
     }
 
     #[test]
@@ -135,9 +140,8 @@ pub(super) struct Reduction {
 /// (they carry the bodies' terms alone: the usual case), T_PP is the bodies' Schur
 /// complement on them, symmetric positive definite: its Cholesky factor L and
 /// W = L⁻¹ T_PL, R = T_LL − Wᵀ W, half the flops of the LU's path (SSNP154 D
-/// point-to-segment near 1M unknowns: reductions of 2.1–3.2 s, p ≈ 4000, l ≈ 3000).
-/// Otherwise its LU, X = T_PP⁻¹ T_PL and T_LP (not kept where T_LP = T_PLᵀ: then
-/// T_LP T_PP⁻¹ = Xᵀ).
+/// point-to-segment near 1M unknowns: reductions of 2.1–3.2 s, p ≈ 4000, l ≈ 3000,
+/// now 1.2–1.9 s). Otherwise (T not symmetric there) its LU, X = T_PP⁻¹ T_PL and T_LP.
 enum PassiveFactor {
     Cholesky {
         l: Mat<f64>,
@@ -146,7 +150,7 @@ enum PassiveFactor {
     Lu {
         pp: DenseLu,
         x: Mat<f64>,
-        lp: Option<Mat<f64>>,
+        lp: Mat<f64>,
     },
 }
 
@@ -200,24 +204,27 @@ impl Blocks {
     }
 
     /// The reduction (and the LU of R) of the blocks filled, for A's interface values
-    /// `values`.
-    pub(super) fn finish(self, values: Vec<f64>) -> Reduction {
+    /// `values`; None where T_PP is symmetric but not positive definite (not the bodies'
+    /// Schur complement: rare, then the interface matrix is factorised whole).
+    pub(super) fn finish(self, values: Vec<f64>) -> Option<Reduction> {
         let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
         let (p, l) = (self.passive.len(), self.live.len());
         let symmetric = (0..p).all(|j| (j + 1..p).all(|i| same(self.pp[(i, j)], self.pp[(j, i)])))
             && (0..p).all(|j| (0..l).all(|i| same(self.lp[(i, j)], self.pl[(j, i)])));
-        let factor = if symmetric { cholesky(&self.pp) } else { None };
-        let (passive_factor, r) = match factor {
-            Some(factor) => {
-                // (dropped before W and R are made: the reduction's peak)
-                drop((self.pp, self.lp));
-                reduce_symmetric(factor, self.pl, self.ll)
+        let (passive_factor, r) = if symmetric {
+            // (dropped before W and R are made: the reduction's peak)
+            drop(self.lp);
+            let mut pp = self.pp;
+            if !cholesky_in_place(&mut pp) {
+                return None;
             }
-            None => reduce_by_lu(self.pp, self.pl, self.lp, self.ll, symmetric),
+            reduce_symmetric(pp, self.pl, self.ll)
+        } else {
+            reduce_by_lu(self.pp, self.pl, self.lp, self.ll)
         };
         let mut ll = DenseLu::default();
         ll.factor(r.clone());
-        Reduction {
+        Some(Reduction {
             passive: self.passive,
             live: self.live,
             passive_factor,
@@ -225,7 +232,7 @@ impl Blocks {
             ll,
             place: self.place,
             values,
-        }
+        })
     }
 }
 
@@ -238,22 +245,20 @@ fn par(k: usize) -> Par {
     }
 }
 
-/// The Cholesky factor of `m` (its lower triangle), None where `m` is not positive
-/// definite.
-fn cholesky(m: &Mat<f64>) -> Option<Mat<f64>> {
+/// Cholesky factorisation of `m` in place (its lower triangle); false where `m` is not
+/// positive definite (then `m` is spoilt).
+fn cholesky_in_place(m: &mut Mat<f64>) -> bool {
     let n = m.nrows();
-    let mut l = m.clone();
     let params = Default::default();
     let mut mem = MemBuffer::new(llt::cholesky_in_place_scratch::<f64>(n, par(n), params));
     llt::cholesky_in_place(
-        l.as_mut(),
+        m.as_mut(),
         Default::default(),
         par(n),
         MemStack::new(&mut mem),
         params,
     )
-    .ok()?;
-    Some(l)
+    .is_ok()
 }
 
 /// W = L⁻¹ T_PL and R = T_LL − Wᵀ W, from T_PP's Cholesky factor L.
@@ -283,13 +288,12 @@ fn reduce_symmetric(l: Mat<f64>, pl: Mat<f64>, ll: Mat<f64>) -> (PassiveFactor, 
     (PassiveFactor::Cholesky { l, w }, r)
 }
 
-/// T_PP's LU, X = T_PP⁻¹ T_PL, R = T_LL − T_LP X (T_LP kept unless `symmetric`).
+/// T_PP's LU, X = T_PP⁻¹ T_PL, R = T_LL − T_LP X (T not symmetric: T_LP kept).
 fn reduce_by_lu(
     pp: Mat<f64>,
     pl: Mat<f64>,
     lp: Mat<f64>,
     ll: Mat<f64>,
-    symmetric: bool,
 ) -> (PassiveFactor, Mat<f64>) {
     let (p, n) = (pl.nrows(), pl.ncols());
     let mut lu = DenseLu::default();
@@ -306,7 +310,6 @@ fn reduce_by_lu(
         -1.0,
         par(n),
     );
-    let lp = (!symmetric).then_some(lp);
     (PassiveFactor::Lu { pp: lu, x, lp }, r)
 }
 
@@ -318,7 +321,7 @@ impl Reduction {
     /// Whether T_LP is kept (T not symmetric between the passive unknowns and the rest).
     #[cfg(test)]
     pub(super) fn keeps_lp(&self) -> bool {
-        matches!(self.passive_factor, PassiveFactor::Lu { lp: Some(_), .. })
+        matches!(self.passive_factor, PassiveFactor::Lu { .. })
     }
 
     /// Whether T_PP is factorised by Cholesky.
@@ -380,24 +383,9 @@ impl Reduction {
                 solve_upper_triangular_in_place(l.transpose(), bp.as_mut(), Par::Seq);
             }
             PassiveFactor::Lu { pp, x, lp } => {
-                match lp {
-                    // b_L − T_LP T_PP⁻¹ b_P
-                    Some(lp) => {
-                        solve(pp, &mut bp);
-                        matmul(bl.as_mut(), Accum::Add, lp, bp.as_ref(), -1.0, Par::Seq);
-                    }
-                    None => {
-                        matmul(
-                            bl.as_mut(),
-                            Accum::Add,
-                            x.transpose(),
-                            bp.as_ref(),
-                            -1.0,
-                            Par::Seq,
-                        );
-                        solve(pp, &mut bp);
-                    }
-                }
+                // b_L − T_LP T_PP⁻¹ b_P
+                solve(pp, &mut bp);
+                matmul(bl.as_mut(), Accum::Add, lp, bp.as_ref(), -1.0, Par::Seq);
                 solve(&self.ll, &mut bl);
                 matmul(
                     bp.as_mut(),
@@ -443,8 +431,13 @@ impl InterfaceSolver {
                 blocks.add(at[i], at[j], v);
             }
         });
+        // (the values kept aside: a reduction that cannot be made falls back on them)
+        let Some(reduction) = blocks.finish(values.clone()) else {
+            self.factor_whole(a, at, diagonal, values);
+            return;
+        };
         let base = &mut self.base;
-        base.reduction = Some(blocks.finish(values));
+        base.reduction = Some(reduction);
         base.at = at;
         base.diagonal = diagonal;
         self.factorised = base.reduction.as_ref().unwrap().values.clone();
