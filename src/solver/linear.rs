@@ -172,12 +172,7 @@ impl LinearSolver {
             self.sym_llt = None;
             self.sym_lu = None;
             if !self.rebind(a) {
-                // (its large buffers go to the next analysis)
-                self.storage = self
-                    .ldlt
-                    .take()
-                    .map(Factorisation::into_storage)
-                    .unwrap_or_default();
+                self.drop_analysis();
             }
             self.pattern = Some(if a.pattern_stamp != 0 {
                 Pattern::Stamp(a.pattern_stamp)
@@ -189,11 +184,7 @@ impl LinearSolver {
         // or the bodies are to be factorised anyway
         if let Some(Factorisation::Interface(s)) = &self.ldlt {
             if !s.stands(a) {
-                self.storage = self
-                    .ldlt
-                    .take()
-                    .map(Factorisation::into_storage)
-                    .unwrap_or_default();
+                self.drop_analysis();
             }
         }
         match self.method {
@@ -268,6 +259,16 @@ impl LinearSolver {
             Method::Lu => self.factor_lu(a)?,
         }
         Ok(())
+    }
+
+    /// Drops the analysis at hand (the next `factor` makes a new one); its large buffers
+    /// go to the next analysis.
+    fn drop_analysis(&mut self) {
+        self.storage = self
+            .ldlt
+            .take()
+            .map(Factorisation::into_storage)
+            .unwrap_or_default();
     }
 
     /// A changed pattern that the interface condensation in hand takes as its own (see
