@@ -129,11 +129,10 @@ impl Block {
     /// passed over: their caller has found them zero (`growth.rs`). The last factorisation
     /// and its values are kept: when the block's values in `a` are the same, the next
     /// `factor` keeps them. False leaves the block unusable (its caller analyses `a`
-    /// anew). (No copy of the block's pattern is made: fresh pages cost more than the
-    /// comparison at 350k unknowns.)
-    pub(super) fn rebind(&mut self, a: &SparseMatrix, beyond: bool) -> bool {
+    /// anew). `at`: the block's `positions`. (No copy of the block's pattern is made:
+    /// fresh pages cost more than the comparison at 350k unknowns.)
+    pub(super) fn rebind(&mut self, a: &SparseMatrix, at: &[usize], beyond: bool) -> bool {
         let interior = self.interior;
-        let at = self.positions(a.n);
         let unknowns = &self.unknowns;
         let mut diagonal = vec![NONE; interior];
         // The block's matrix (see `local_pattern`): in an interior column, its interior rows

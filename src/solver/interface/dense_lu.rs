@@ -22,8 +22,9 @@ pub(super) struct DenseLu {
 
 const DENSE_PAR: Par = Par::Seq;
 
-/// The parallelism of a dense LU of order k (see `DenseLu`).
-fn factor_par(k: usize) -> Par {
+/// The parallelism of dense work of order k (see `DenseLu`; the reduction's products and
+/// solves too).
+pub(super) fn factor_par(k: usize) -> Par {
     if k >= 1000 {
         Par::rayon(0)
     } else {

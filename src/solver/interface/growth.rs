@@ -83,7 +83,8 @@ impl InterfaceSolver {
         let rebound = self
             .blocks
             .par_iter_mut()
-            .map(|b| b.rebind(a, true) && b.values_unchanged(a))
+            .zip(&positions)
+            .map(|(b, at)| b.rebind(a, at, true) && b.values_unchanged(a))
             .collect::<Vec<bool>>();
         if rebound.contains(&false) {
             return false;

@@ -303,7 +303,10 @@ impl InterfaceSolver {
         let rebound = self
             .blocks
             .par_iter_mut()
-            .map(|b| b.rebind(a, false))
+            .map(|b| {
+                let at = b.positions(a.n);
+                b.rebind(a, &at, false)
+            })
             .collect::<Vec<bool>>();
         if rebound.contains(&false) {
             return false;

@@ -11,7 +11,7 @@
 //! that differs from it in L × L only is R plus that difference, whose LU is of order |L|
 //! (`pays` decides where the one pays for the other).
 
-use super::dense_lu::DenseLu;
+use super::dense_lu::{factor_par as par, DenseLu};
 use super::{InterfaceSolver, NONE};
 use crate::assembly::matrix::SparseMatrix;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -236,15 +236,6 @@ impl Blocks {
     }
 }
 
-/// Parallel on both cores from this order on.
-fn par(k: usize) -> Par {
-    if k >= 1000 {
-        Par::rayon(0)
-    } else {
-        Par::Seq
-    }
-}
-
 /// Cholesky factorisation of `m` in place (its lower triangle); false where `m` is not
 /// positive definite (then `m` is spoilt).
 fn cholesky_in_place(m: &mut Mat<f64>) -> bool {
@@ -318,13 +309,8 @@ impl Reduction {
         self.live.len()
     }
 
-    /// Whether T_LP is kept (T not symmetric between the passive unknowns and the rest).
-    #[cfg(test)]
-    pub(super) fn keeps_lp(&self) -> bool {
-        matches!(self.passive_factor, PassiveFactor::Lu { .. })
-    }
-
-    /// Whether T_PP is factorised by Cholesky.
+    /// Whether T_PP is factorised by Cholesky (else by LU, T_LP kept: T not symmetric
+    /// between the passive unknowns and the rest).
     #[cfg(test)]
     pub(super) fn passive_cholesky(&self) -> bool {
         matches!(self.passive_factor, PassiveFactor::Cholesky { .. })
@@ -440,7 +426,7 @@ impl InterfaceSolver {
         base.reduction = Some(reduction);
         base.at = at;
         base.diagonal = diagonal;
-        self.factorised = base.reduction.as_ref().unwrap().values.clone();
+        self.factorised = values;
         self.z.clear(k);
     }
 
