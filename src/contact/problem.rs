@@ -114,8 +114,9 @@ impl<'m> ContactProblem<'m> {
         r[nf..].fill(0.0);
         self.triplets.clear();
         let mesh = self.solid.mesh;
-        for (p, &base) in self.pairs.iter().zip(&self.mult_base) {
+        for (i, (p, &base)) in self.pairs.iter().zip(&self.mult_base).enumerate() {
             let n = p.num_multipliers();
+            self.triplets.begin_pair(i);
             p.set_tangent_wanted(contact_tangent);
             p.contribute(
                 mesh,

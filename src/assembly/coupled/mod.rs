@@ -8,24 +8,68 @@
 //! |---|---|
 //! | `mod.rs` | `Triplets`, `CoupledMatrix::update`: the contributions added where they go |
 //! | `rebuild.rs` | a pattern change: the new entries merged in place |
+//! | `groups.rs` | the targets of keyed groups of triplets, kept while the pattern stands |
 //! | `tests.rs` | against fresh combinations, through rebuilds, fixed and linked dofs |
 
 use super::dofs::DofMap;
 use super::matrix::SparseMatrix;
 use crate::error::{Error, Result};
 
+mod groups;
 mod rebuild;
 #[cfg(test)]
 mod tests;
 
+use groups::GroupTargets;
+
 #[derive(Default)]
 pub struct Triplets {
     pub entries: Vec<(usize, usize, f64)>,
+    /// Where groups of entries start (see `group`): a key, or none for entries that
+    /// belong to no group.
+    groups: Vec<(Option<u64>, usize)>,
+    /// Added to every key from `begin_pair` on (keys of different pairs differ).
+    key_base: u64,
 }
 
 impl Triplets {
     pub fn clear(&mut self) {
         self.entries.clear();
+        self.groups.clear();
+    }
+    /// The entries added from here on, up to the next `group` or `ungrouped`, form the
+    /// group `key` (e.g. one contact point's terms): when its (row, column) sequence is
+    /// that of the last group of that key, its targets in the matrix are not searched
+    /// again (statuses that change at a few points change the whole sequence, not theirs).
+    /// Keys are unique within one evaluation; see `ungrouped` for entries of no group.
+    pub fn group(&mut self, key: u64) {
+        self.groups
+            .push((Some(self.key_base.wrapping_add(key)), self.entries.len()));
+    }
+    /// The entries from here on are contact pair `pair`'s (its group keys are its own).
+    pub fn begin_pair(&mut self, pair: usize) {
+        self.key_base = (pair as u64) << 40;
+        self.ungrouped();
+    }
+    /// The entries added from here on belong to no group.
+    pub fn ungrouped(&mut self) {
+        self.groups.push((None, self.entries.len()));
+    }
+    /// The segments of the entries: (key, range), in order, covering them all.
+    fn segments(&self) -> Vec<(Option<u64>, std::ops::Range<usize>)> {
+        let n = self.entries.len();
+        let mut out = vec![];
+        let first = self.groups.first().map_or(n, |g| g.1);
+        if first > 0 {
+            out.push((None, 0..first));
+        }
+        for (i, &(key, start)) in self.groups.iter().enumerate() {
+            let end = self.groups.get(i + 1).map_or(n, |g| g.1);
+            if end > start {
+                out.push((key, start..end));
+            }
+        }
+        out
     }
     pub fn add(&mut self, row: usize, col: usize, v: f64) {
         self.entries.push((row, col, v));
@@ -82,6 +126,8 @@ pub struct CoupledMatrix {
     /// again.
     solid_generation: Option<u64>,
     solid_at_targets: Vec<f64>,
+    /// The targets of the last keyed groups, valid for the pattern they were found in.
+    groups: GroupTargets,
     /// Number of pattern rebuilds (for reports).
     pub rebuilds: usize,
 }
@@ -151,73 +197,31 @@ impl CoupledMatrix {
         n_extra: usize,
         extra: &Triplets,
     ) -> Result<()> {
-        let nf = dofs.num_free;
-        let ndof = dofs.num_dofs();
-        let n = nf + n_extra;
-        let mut ex_r = vec![];
-        let mut ex_c = vec![];
-        let expand = |id: usize, out: &mut Vec<(usize, f64)>| {
-            if id < ndof {
-                dofs.expand_dof(id, out);
-            } else {
-                out.clear();
-                out.push((nf + id - ndof, 1.0));
-            }
-        };
-        // (column, row, coefficient) per target, grouped by triplet
-        let mut targets: Vec<(usize, usize, f64)> = Vec::with_capacity(extra.entries.len());
-        let mut ptr = Vec::with_capacity(extra.entries.len() + 1);
-        ptr.push(0);
-        for &(r, c, _) in &extra.entries {
-            expand(r, &mut ex_r);
-            expand(c, &mut ex_c);
-            for &(i, ci) in &ex_r {
-                for &(j, cj) in &ex_c {
-                    targets.push((j, i, ci * cj));
-                }
-            }
-            ptr.push(targets.len());
-        }
+        let n = dofs.num_free + n_extra;
         // Status changes usually keep every target inside the current pattern (it holds the
-        // explicit zeros of all candidate couplings): then no sort and no rebuild.
-        let fits = self.n == n;
-        // (positions fit in 32 bits: the assembler and `rebuild` refuse larger matrices)
-        let mut at = Vec::with_capacity(targets.len());
-        if fits {
-            for &(col, row, _) in &targets {
-                match m.position(row, col) {
-                    Some(q) => at.push(q as u32),
-                    None => break,
-                }
+        // explicit zeros of all candidate couplings): then no rebuild, and the groups
+        // unchanged since the last search keep their targets.
+        self.groups.stand_for(m.pattern_stamp);
+        let found = if self.n == n {
+            self.groups.targets(m, dofs, extra)
+        } else {
+            None
+        };
+        self.targets = match found {
+            Some(t) => t,
+            None => {
+                // (the pattern only grows: the rebuild keeps every entry of the last one,
+                // so a pair that sends its explicit zeros only when its candidates change
+                // keeps them when another pair's new entries force a rebuild)
+                let (_, targets) = expand(dofs, &extra.entries);
+                let pairs = targets.iter().map(|t| (t.0, t.1));
+                self.rebuild(m, cell_scatter, reserved, n, pairs)?;
+                // (searched in the new pattern, and its groups kept for the next update)
+                self.groups.stand_for(m.pattern_stamp);
+                self.groups
+                    .targets(m, dofs, extra)
+                    .expect("pattern holds every contributed entry")
             }
-        }
-        if at.len() < targets.len() {
-            // (the pattern only grows: the rebuild keeps every entry of the last one, so a
-            // pair that sends its explicit zeros only when its candidates change keeps them
-            // when another pair's new entries force a rebuild)
-            let pairs = targets.iter().map(|t| (t.0, t.1));
-            self.rebuild(m, cell_scatter, reserved, n, pairs)?;
-            at = targets
-                .iter()
-                .map(|&(col, row, _)| {
-                    let q = m
-                        .position(row, col)
-                        .expect("pattern holds every contributed entry");
-                    q as u32
-                })
-                .collect();
-        }
-        // one target of coefficient one per triplet (no linked dof among them): no
-        // pointers, no coefficients
-        let plain = ptr.windows(2).all(|w| w[1] == w[0] + 1) && targets.iter().all(|t| t.2 == 1.0);
-        self.targets = Targets {
-            ptr: if plain { vec![] } else { ptr },
-            at,
-            coefficients: if plain {
-                vec![]
-            } else {
-                targets.iter().map(|t| t.2).collect()
-            },
         };
         let id = |i: usize| u32::try_from(i).map_err(|_| too_large());
         self.last_triplets = extra
@@ -240,6 +244,25 @@ struct Targets {
 }
 
 impl Targets {
+    /// From triplet t's targets `at[ptr[t]..ptr[t + 1]]` with their `coefficients`; the
+    /// usual case, one target of coefficient one per triplet, keeps only `at`.
+    fn new(ptr: Vec<usize>, at: Vec<u32>, coefficients: Vec<f64>) -> Targets {
+        let plain =
+            ptr.windows(2).all(|w| w[1] == w[0] + 1) && coefficients.iter().all(|&c| c == 1.0);
+        if plain {
+            Targets {
+                ptr: vec![],
+                at,
+                coefficients: vec![],
+            }
+        } else {
+            Targets {
+                ptr,
+                at,
+                coefficients,
+            }
+        }
+    }
     fn of(&self, t: usize) -> std::ops::Range<usize> {
         if self.ptr.is_empty() {
             t..t + 1
@@ -254,6 +277,39 @@ impl Targets {
             self.coefficients[s]
         }
     }
+}
+
+/// The triplets' targets over the unknowns: (column, row, coefficient) each, triplet t's
+/// at `ptr[t]..ptr[t + 1]` (a dof expands to its free dofs, an extra id ndof + k to
+/// unknown num_free + k).
+fn expand(
+    dofs: &DofMap,
+    entries: &[(usize, usize, f64)],
+) -> (Vec<usize>, Vec<(usize, usize, f64)>) {
+    let (nf, ndof) = (dofs.num_free, dofs.num_dofs());
+    let (mut ex_r, mut ex_c) = (vec![], vec![]);
+    let expand = |id: usize, out: &mut Vec<(usize, f64)>| {
+        if id < ndof {
+            dofs.expand_dof(id, out);
+        } else {
+            out.clear();
+            out.push((nf + id - ndof, 1.0));
+        }
+    };
+    let mut targets = Vec::with_capacity(entries.len());
+    let mut ptr = Vec::with_capacity(entries.len() + 1);
+    ptr.push(0);
+    for &(r, c, _) in entries {
+        expand(r, &mut ex_r);
+        expand(c, &mut ex_c);
+        for &(i, ci) in &ex_r {
+            for &(j, cj) in &ex_c {
+                targets.push((j, i, ci * cj));
+            }
+        }
+        ptr.push(targets.len());
+    }
+    (ptr, targets)
 }
 
 fn too_large() -> Error {

@@ -245,3 +245,80 @@ fn triplets_on_fixed_and_linked_dofs_expand_to_their_targets() {
         }
     }
 }
+
+/// Keyed groups (one per contact point) whose statuses come and go, change their
+/// entries, move in the sequence, and leave the pattern: after every update the matrix
+/// equals the one the same triplets give without groups, with plain and with linked dofs
+/// (several targets per triplet); and a group's targets found before a rebuild are not
+/// taken after it.
+#[test]
+fn grouped_triplets_give_the_values_of_ungrouped_ones() {
+    use crate::assembly::dofs::Relation;
+    type Group = (u64, Vec<(usize, usize, f64)>);
+    let states: Vec<Vec<Group>> = vec![
+        vec![
+            (0, vec![(1, 6, 1.0), (6, 1, 1.0)]),
+            (1, vec![(4, 6, -0.5), (6, 4, -0.5), (1, 4, 0.3)]),
+        ],
+        // point 0 off, point 1 the same entries with other values, point 2 on
+        vec![
+            (1, vec![(4, 6, 0.2), (6, 4, 0.2), (1, 4, -0.1)]),
+            (2, vec![(6, 6, 2.5)]),
+        ],
+        // point 1 with fewer entries, point 0 back after it with other values
+        vec![(1, vec![(1, 4, 0.9)]), (0, vec![(1, 6, 0.4), (6, 1, 0.4)])],
+        // an entry outside the pattern: a rebuild moves every position
+        vec![
+            (0, vec![(1, 6, 1.0), (6, 1, 1.0), (0, 5, 0.7)]),
+            (1, vec![(4, 6, -0.5), (6, 4, -0.5), (1, 4, 0.3)]),
+        ],
+        // point 2 back: its targets found before the rebuild no longer hold
+        vec![
+            (0, vec![(1, 6, 1.0), (6, 1, 1.0)]),
+            (1, vec![(4, 6, -0.5), (6, 4, -0.5), (1, 4, 0.3)]),
+            (2, vec![(6, 6, 1.5)]),
+        ],
+    ];
+    let link = Relation {
+        terms: vec![(7, 2.0), (4, -1.0), (5, -1.0)],
+        rhs: 0.0,
+        name: "mean".into(),
+    };
+    let plain = DofMap::new(&[true; 6], &[], &[]).unwrap();
+    let linked = DofMap::new(&[true; 8], &[(6, 0.0)], &[link]).unwrap();
+    for (dofs, extra) in [(&plain, 6), (&linked, 8)] {
+        let (mut m, mut cells) = solid(1.0);
+        let (mut m0, mut cells0) = solid(1.0);
+        let (mut grouped, mut ungrouped) = (CoupledMatrix::default(), CoupledMatrix::default());
+        let (mut t, mut t0) = (Triplets::default(), Triplets::default());
+        for state in &states {
+            t.clear();
+            t0.clear();
+            t.begin_pair(0);
+            for (key, entries) in state {
+                t.group(*key);
+                // (the extra unknown's id is the dofs' count)
+                let id = |i: usize| if i == 6 { extra } else { i };
+                for &(r, c, v) in entries {
+                    t.add(id(r), id(c), v);
+                    t0.add(id(r), id(c), v);
+                }
+            }
+            t.ungrouped();
+            t.add(2, 2, 0.125);
+            t0.add(2, 2, 0.125);
+            grouped
+                .update(target(&mut m, &mut cells, 3), dofs, 1, &t)
+                .unwrap();
+            ungrouped
+                .update(target(&mut m0, &mut cells0, 3), dofs, 1, &t0)
+                .unwrap();
+            assert_eq!(m.col_ptr, m0.col_ptr);
+            assert_eq!(m.row_idx, m0.row_idx);
+            assert_eq!(m.values, m0.values);
+        }
+        assert_eq!(grouped.rebuilds, 2, "the first state and the fourth");
+        // point 1 in the second state and the last, point 0 in the third
+        assert_eq!(grouped.groups.reused, 3, "unchanged groups' targets kept");
+    }
+}

@@ -25,6 +25,8 @@ impl PointToSegment {
         let rho = self.opts.rho;
         let lambda_floor = self.friction_floor(lam);
         for i in 0..self.points.len() {
+            // (one group per point: see `Triplets::group`)
+            k.group(i as u64);
             let p = &self.points[i];
             let e = self.eval(mesh, u, i);
             let lp = self.point_lambda(mesh, i, &e.ns, lam);
@@ -207,6 +209,7 @@ impl PointToSegment {
         }
         // weightless multipliers (no point weighs them): λ = 0 by a row on the scale of the
         // inactive ones (−ω λ / ρ)
+        k.ungrouped();
         let wmax = self.points.iter().fold(0.0f64, |m, p| m.max(p.omega));
         for (m, _) in self.weightless.iter().enumerate().filter(|w| *w.1) {
             if !self.opts.node_to_segment {
