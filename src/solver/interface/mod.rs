@@ -20,12 +20,13 @@
 //! interface matrix's LU), `update.rs` (an active-set re-solve as a low-rank change of the
 //! last LU, where T changes in a few rows only), `reduced.rs` (T reduced onto the unknowns
 //! that carry contact terms, so that a correction with the bodies' factorisations kept
-//! costs an LU of those alone), `growth.rs` (a grown contact pattern taken while its new
-//! entries are zero).
+//! costs an LU of those alone; `passive.rs` its passive part body by body), `growth.rs` (a
+//! grown contact pattern taken while its new entries are zero).
 
 mod block;
 mod dense_lu;
 mod growth;
+mod passive;
 mod reduced;
 mod update;
 

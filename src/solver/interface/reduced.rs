@@ -12,15 +12,10 @@
 //! (`pays` decides where the one pays for the other).
 
 use super::dense_lu::{factor_par as par, DenseLu};
+use super::passive::{reduce_by_blocks, PassiveBlocks};
 use super::{InterfaceSolver, NONE};
 use crate::assembly::matrix::SparseMatrix;
-use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::llt::factor as llt;
 use faer::linalg::matmul::matmul;
-use faer::linalg::matmul::triangular::{self, BlockStructure};
-use faer::linalg::triangular_solve::{
-    solve_lower_triangular_in_place, solve_upper_triangular_in_place,
-};
 use faer::{Accum, Mat, Par};
 
 /// Passive unknowns below which the interface is factorised whole (the reduction's extra
@@ -96,6 +91,52 @@ mod tests {
         );
     }
 
+    /// Two bodies: passive unknowns 0–2 (body one) and 3–5 (body two), live 6–7 (body
+    /// one's), 8 (body two's) and 9 (a multiplier between them); T_PP is block diagonal and
+    /// each block couples to its body's live unknowns alone. The reduction factorises the
+    /// two blocks apart and solves T exactly.
+    #[test]
+    fn a_block_diagonal_passive_part_is_factorised_block_by_block() {
+        let n = 10;
+        let body = |i: usize| match i {
+            0..=2 | 6 | 7 => Some(0),
+            3..=5 | 8 => Some(1),
+            _ => None,
+        };
+        let t = Mat::from_fn(n, n, |i, j| {
+            if i == j {
+                return if i == 9 { 0.0 } else { 4.0 + 0.1 * i as f64 };
+            }
+            match (body(i), body(j)) {
+                (Some(a), Some(b)) if a == b => -0.5 / (1.0 + (i + j) as f64),
+                // (the multiplier's terms: with live unknowns only, not symmetric)
+                (None, Some(_)) if j >= 6 => 0.2 * j as f64 - 0.3,
+                (Some(_), None) if i >= 6 => 0.25 * i as f64 - 0.1,
+                _ => 0.0,
+            }
+        });
+        let is_live: Vec<bool> = (0..n).map(|i| i >= 6).collect();
+        let mut blocks = Blocks::new(&is_live);
+        for j in 0..n {
+            for i in 0..n {
+                blocks.add(i, j, t[(i, j)]);
+            }
+        }
+        let red = blocks.finish(vec![]).expect("positive definite blocks");
+        assert!(red.passive_cholesky());
+        assert_eq!(red.passive_blocks(), 2, "one block per body");
+        for c in [1, 3] {
+            let b = Mat::from_fn(n, c, |i, k| (1.3 * i as f64 + k as f64).sin() + 0.2);
+            let mut x = b.clone();
+            red.solve(&mut x);
+            let r = &t * &x - &b;
+            let res = (0..n)
+                .flat_map(|i| (0..c).map(move |k| (i, k)))
+                .fold(0.0f64, |m, (i, k)| m.max(r[(i, k)].abs()));
+            assert!(res < 1e-14, "{c} right-hand sides: max residual {res}");
+        }
+    }
+
     #[test]
     fn a_reduction_pays_where_live_lus_follow_and_the_live_part_is_small() {
         // (the interfaces of SSNP154 D at 93k with point-to-segment and 266k with mortar)
@@ -138,17 +179,15 @@ pub(super) struct Reduction {
 
 /// T_PP's factorisation. Where T is symmetric between the passive unknowns and the rest
 /// (they carry the bodies' terms alone: the usual case), T_PP is the bodies' Schur
-/// complement on them, symmetric positive definite: its Cholesky factor L and
-/// W = L⁻¹ T_PL, R = T_LL − Wᵀ W, half the flops of the LU's path (SSNP154 D
-/// point-to-segment near 1M unknowns: reductions of 2.1–3.2 s, p ≈ 4000, l ≈ 3000,
-/// now 1.2–1.9 s). Otherwise (T not symmetric there) its LU, X = T_PP⁻¹ T_PL and T_LP.
+/// complements on them, block diagonal and positive definite: Cholesky factors and
+/// W = L⁻¹ T_PL block by block (`passive.rs`), R = T_LL − Wᵀ W, a fraction of the LU's
+/// flops (SSNP154 D point-to-segment near 1M unknowns: reductions of 2.1–3.2 s by LU,
+/// p ≈ 4000, l ≈ 3000, 1.2–1.9 s by Cholesky of T_PP whole). Otherwise (T not symmetric
+/// there) its LU, X = T_PP⁻¹ T_PL and T_LP.
 enum PassiveFactor {
-    Cholesky {
-        l: Mat<f64>,
-        w: Mat<f64>,
-    },
+    Cholesky(PassiveBlocks),
     Lu {
-        pp: DenseLu,
+        pp: Box<DenseLu>,
         x: Mat<f64>,
         lp: Mat<f64>,
     },
@@ -214,11 +253,8 @@ impl Blocks {
         let (passive_factor, r) = if symmetric {
             // (dropped before W and R are made: the reduction's peak)
             drop(self.lp);
-            let mut pp = self.pp;
-            if !cholesky_in_place(&mut pp) {
-                return None;
-            }
-            reduce_symmetric(pp, self.pl, self.ll)
+            let (blocks, r) = reduce_by_blocks(self.pp, self.pl, self.ll)?;
+            (PassiveFactor::Cholesky(blocks), r)
         } else {
             reduce_by_lu(self.pp, self.pl, self.lp, self.ll)
         };
@@ -234,49 +270,6 @@ impl Blocks {
             values,
         })
     }
-}
-
-/// Cholesky factorisation of `m` in place (its lower triangle); false where `m` is not
-/// positive definite (then `m` is spoilt).
-fn cholesky_in_place(m: &mut Mat<f64>) -> bool {
-    let n = m.nrows();
-    let params = Default::default();
-    let mut mem = MemBuffer::new(llt::cholesky_in_place_scratch::<f64>(n, par(n), params));
-    llt::cholesky_in_place(
-        m.as_mut(),
-        Default::default(),
-        par(n),
-        MemStack::new(&mut mem),
-        params,
-    )
-    .is_ok()
-}
-
-/// W = L⁻¹ T_PL and R = T_LL − Wᵀ W, from T_PP's Cholesky factor L.
-fn reduce_symmetric(l: Mat<f64>, pl: Mat<f64>, ll: Mat<f64>) -> (PassiveFactor, Mat<f64>) {
-    let (p, n) = (pl.nrows(), pl.ncols());
-    let mut w = pl;
-    solve_lower_triangular_in_place(l.as_ref(), w.as_mut(), par(p + n));
-    // Wᵀ W, its lower half (symmetric), then subtracted on both sides
-    let mut s = Mat::<f64>::zeros(n, n);
-    triangular::matmul(
-        s.as_mut(),
-        BlockStructure::TriangularLower,
-        Accum::Replace,
-        w.transpose(),
-        BlockStructure::Rectangular,
-        w.as_ref(),
-        BlockStructure::Rectangular,
-        1.0,
-        par(n),
-    );
-    let mut r = ll;
-    for j in 0..n {
-        for i in 0..n {
-            r[(i, j)] -= if i >= j { s[(i, j)] } else { s[(j, i)] };
-        }
-    }
-    (PassiveFactor::Cholesky { l, w }, r)
 }
 
 /// T_PP's LU, X = T_PP⁻¹ T_PL, R = T_LL − T_LP X (T not symmetric: T_LP kept).
@@ -301,7 +294,14 @@ fn reduce_by_lu(
         -1.0,
         par(n),
     );
-    (PassiveFactor::Lu { pp: lu, x, lp }, r)
+    (
+        PassiveFactor::Lu {
+            pp: Box::new(lu),
+            x,
+            lp,
+        },
+        r,
+    )
 }
 
 impl Reduction {
@@ -313,7 +313,16 @@ impl Reduction {
     /// between the passive unknowns and the rest).
     #[cfg(test)]
     pub(super) fn passive_cholesky(&self) -> bool {
-        matches!(self.passive_factor, PassiveFactor::Cholesky { .. })
+        matches!(self.passive_factor, PassiveFactor::Cholesky(_))
+    }
+
+    /// The number of blocks of a passive part factorised by Cholesky.
+    #[cfg(test)]
+    pub(super) fn passive_blocks(&self) -> usize {
+        match &self.passive_factor {
+            PassiveFactor::Cholesky(b) => b.len(),
+            PassiveFactor::Lu { .. } => 0,
+        }
     }
 
     /// Where the coupled unknown at position i sits.
@@ -347,26 +356,10 @@ impl Reduction {
         };
         match &self.passive_factor {
             // z = L⁻¹ b_P, b_L − Wᵀ z, x_L = R⁻¹ (…), x_P = L⁻ᵀ (z − W x_L)
-            PassiveFactor::Cholesky { l, w } => {
-                solve_lower_triangular_in_place(l.as_ref(), bp.as_mut(), Par::Seq);
-                matmul(
-                    bl.as_mut(),
-                    Accum::Add,
-                    w.transpose(),
-                    bp.as_ref(),
-                    -1.0,
-                    Par::Seq,
-                );
+            PassiveFactor::Cholesky(blocks) => {
+                blocks.forward(&mut bp, &mut bl);
                 solve(&self.ll, &mut bl);
-                matmul(
-                    bp.as_mut(),
-                    Accum::Add,
-                    w.as_ref(),
-                    bl.as_ref(),
-                    -1.0,
-                    Par::Seq,
-                );
-                solve_upper_triangular_in_place(l.transpose(), bp.as_mut(), Par::Seq);
+                blocks.backward(&mut bp, &bl);
             }
             PassiveFactor::Lu { pp, x, lp } => {
                 // b_L − T_LP T_PP⁻¹ b_P
