@@ -14,6 +14,7 @@
 //! | `progress` | the status line of long work on a terminal, `--quiet` |
 //! | `fem` | shape functions, quadrature, materials, element kernels |
 //! | `expr` | values given as expressions of x, y and t (compiled once, errors placed) |
+//! | `union_find` | disjoint sets (bodies of a mesh, blocks of an interface) |
 
 // Index loops mirror the formulas (sums over nodes, components, Gauss points).
 #![allow(clippy::needless_range_loop)]
@@ -31,5 +32,6 @@ pub mod mesh;
 pub mod post;
 pub mod progress;
 pub mod solver;
+pub mod union_find;
 
 pub use error::{Error, Result};

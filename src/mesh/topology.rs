@@ -1,6 +1,7 @@
 //! Edge ↔ cell adjacency: which 2D cell an edge (Seg2/Seg3 cell or cell side) belongs to.
 
 use super::Mesh;
+use crate::union_find::UnionFind;
 use std::collections::HashMap;
 
 /// Map from an edge's sorted corner pair to (2D cell, local edge index) for every side of
@@ -35,21 +36,13 @@ pub fn edge_parent(
 /// usize::MAX for nodes of no 2D cell.
 pub fn node_bodies(mesh: &Mesh) -> Vec<usize> {
     // union-find over nodes, joined through the corners of each 2D cell
-    let mut parent: Vec<usize> = (0..mesh.num_nodes()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = UnionFind::new(mesh.num_nodes());
     let mut used = vec![false; mesh.num_nodes()];
     for c in mesh.cells_of_dim(2) {
         let nodes = mesh.cell_nodes(c);
         for &n in nodes {
             used[n] = true;
-            let (a, b) = (root(&mut parent, nodes[0]), root(&mut parent, n));
-            parent[b] = a;
+            sets.join(nodes[0], n);
         }
     }
     let mut id: HashMap<usize, usize> = HashMap::new();
@@ -58,7 +51,7 @@ pub fn node_bodies(mesh: &Mesh) -> Vec<usize> {
             if !used[n] {
                 return usize::MAX;
             }
-            let r = root(&mut parent, n);
+            let r = sets.root(n);
             let next = id.len();
             *id.entry(r).or_insert(next)
         })

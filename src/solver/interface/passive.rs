@@ -9,6 +9,7 @@
 //! coupled to about half the live ones), the blocks on the two cores.
 
 use super::dense_lu::factor_par as par;
+use crate::union_find::UnionFind;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor as llt;
 use faer::linalg::matmul::matmul;
@@ -146,28 +147,18 @@ impl PassiveBlocks {
 /// each its indices in increasing order, in the order of their smallest index.
 fn components(m: &Mat<f64>) -> Vec<Vec<usize>> {
     let n = m.nrows();
-    let mut parent: Vec<usize> = (0..n).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
+    let mut sets = UnionFind::new(n);
     for j in 0..n {
         for i in j + 1..n {
             if m[(i, j)] != 0.0 {
-                let (a, b) = (root(&mut parent, i), root(&mut parent, j));
-                if a != b {
-                    parent[a.max(b)] = a.min(b);
-                }
+                sets.join(j, i);
             }
         }
     }
     let mut index = vec![usize::MAX; n];
     let mut parts: Vec<Vec<usize>> = vec![];
     for i in 0..n {
-        let r = root(&mut parent, i);
+        let r = sets.root(i);
         if index[r] == usize::MAX {
             index[r] = parts.len();
             parts.push(vec![]);
