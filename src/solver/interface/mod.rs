@@ -21,11 +21,13 @@
 //! last LU, where T changes in a few rows only), `reduced.rs` (T reduced onto the unknowns
 //! that carry contact terms, so that a correction with the bodies' factorisations kept
 //! costs an LU of those alone; `passive.rs` its passive part body by body), `growth.rs` (a
-//! grown contact pattern taken while its new entries are zero).
+//! grown contact pattern taken while its new entries are zero), `live_lu.rs` (the live
+//! part's LU, its decoupled unknowns apart).
 
 mod block;
 mod dense_lu;
 mod growth;
+mod live_lu;
 mod passive;
 mod reduced;
 mod update;

@@ -12,6 +12,7 @@
 //! (`pays` decides where the one pays for the other).
 
 use super::dense_lu::{factor_par as par, DenseLu};
+use super::live_lu::LiveLu;
 use super::passive::{reduce_by_blocks, PassiveBlocks};
 use super::{InterfaceSolver, NONE};
 use crate::assembly::matrix::SparseMatrix;
@@ -169,7 +170,7 @@ pub(super) struct Reduction {
     passive_factor: PassiveFactor,
     r: Mat<f64>,
     /// the LU of the live matrix: R plus the change of T_LL since the reduction
-    ll: DenseLu,
+    ll: LiveLu,
     /// each coupled unknown's place (by position among the coupled ones)
     place: Vec<Place>,
     /// A's interface entries' values at the reduction, in the order of the interface
@@ -258,8 +259,10 @@ impl Blocks {
         } else {
             reduce_by_lu(self.pp, self.pl, self.lp, self.ll)
         };
-        let mut ll = DenseLu::default();
-        ll.factor(r.clone());
+        let mut ll = LiveLu::default();
+        let mut m = ll.take_storage(l);
+        m.copy_from(&r);
+        ll.factor(m);
         Some(Reduction {
             passive: self.passive,
             live: self.live,
@@ -333,7 +336,7 @@ impl Reduction {
     /// Factorises R + `change` (live rows and columns) as the live matrix.
     pub(super) fn refactor_live(&mut self, change: &[(usize, usize, f64)]) {
         let l = self.r.nrows();
-        let mut m = self.ll.take_storage(l, l);
+        let mut m = self.ll.take_storage(l);
         m.copy_from(&self.r);
         for &(i, j, v) in change {
             m[(i, j)] += v;
@@ -358,14 +361,14 @@ impl Reduction {
             // z = L⁻¹ b_P, b_L − Wᵀ z, x_L = R⁻¹ (…), x_P = L⁻ᵀ (z − W x_L)
             PassiveFactor::Cholesky(blocks) => {
                 blocks.forward(&mut bp, &mut bl);
-                solve(&self.ll, &mut bl);
+                self.ll.solve(&mut bl, many);
                 blocks.backward(&mut bp, &bl);
             }
             PassiveFactor::Lu { pp, x, lp } => {
                 // b_L − T_LP T_PP⁻¹ b_P
                 solve(pp, &mut bp);
                 matmul(bl.as_mut(), Accum::Add, lp, bp.as_ref(), -1.0, Par::Seq);
-                solve(&self.ll, &mut bl);
+                self.ll.solve(&mut bl, many);
                 matmul(
                     bp.as_mut(),
                     Accum::Add,
