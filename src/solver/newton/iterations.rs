@@ -144,7 +144,8 @@ pub(super) fn iterate_step(
             // friction the frozen-body corrections that follow cost about what re-solves
             // cost and settle the statuses as well: re-solves stay off for the step (D at
             // 29k and 93k unknowns: 1.16× and 1.03× with them back).
-            if !taken_back && !(settings.frozen_bodies && backtracking) {
+            let frozen_corrections = settings.frozen_bodies && backtracking;
+            if !(taken_back || frozen_corrections) {
                 resolves_off = false;
             }
         }
