@@ -259,19 +259,17 @@ impl Blocks {
         } else {
             reduce_by_lu(self.pp, self.pl, self.lp, self.ll)
         };
-        let mut ll = LiveLu::default();
-        let mut m = ll.take_storage(l);
-        m.copy_from(&r);
-        ll.factor(m);
-        Some(Reduction {
+        let mut reduction = Reduction {
             passive: self.passive,
             live: self.live,
             passive_factor,
             r,
-            ll,
+            ll: LiveLu::default(),
             place: self.place,
             values,
-        })
+        };
+        reduction.refactor_live(&[]);
+        Some(reduction)
     }
 }
 

@@ -103,6 +103,8 @@ pub(super) fn iterate_step(
     let mut plain_correction: Option<Vec<f64>> = None;
     let mut first_changes = 0;
     let mut resolves_off = false;
+    // frozen-body corrections follow the points of this step (friction: see `frozen`)
+    let frozen_corrections = settings.frozen_bodies && backtracking;
     let mut taken_back = false;
     let mut last_size = f64::INFINITY;
     // c such that a chord step from the current point is predicted to leave c r² (see
@@ -144,7 +146,6 @@ pub(super) fn iterate_step(
             // friction the frozen-body corrections that follow cost about what re-solves
             // cost and settle the statuses as well: re-solves stay off for the step (D at
             // 29k and 93k unknowns: 1.16× and 1.03× with them back).
-            let frozen_corrections = settings.frozen_bodies && backtracking;
             if !(taken_back || frozen_corrections) {
                 resolves_off = false;
             }
