@@ -88,13 +88,16 @@ impl Triplets {
             .collect();
         of_id.sort_unstable();
         of_id.dedup();
-        let mut seen: std::collections::HashSet<usize> = std::collections::HashSet::new();
+        // (each column's last row marks it seen: rows are distinct, no clearing between
+        // them; a hash set per row took 0.1 s per pattern at 93k unknowns, mortar)
+        let ids = of_id.last().map_or(0, |l| l.0 + 1);
+        let mut seen_in = vec![usize::MAX; ids];
         for run in of_id.chunk_by(|a, b| a.0 == b.0) {
             let row = run[0].0;
-            seen.clear();
             for &(_, s) in run {
                 for &col in &sets[s] {
-                    if seen.insert(col) {
+                    if seen_in[col] != row {
+                        seen_in[col] = row;
                         self.entries.push((row, col, 0.0));
                     }
                 }

@@ -534,3 +534,32 @@ fn a_reduction_with_unsymmetric_passive_terms_solves_exactly() {
     let red = s.base.reduction.as_ref().expect("reduced");
     assert!(red.passive_cholesky());
 }
+
+#[test]
+fn a_decoupled_unknowns_diagonal_that_moves_keeps_the_reduction() {
+    // An open tie's multiplier is decoupled (its diagonal alone in row and column: mortar's
+    // open points, whose weight moves with the geometry). Its diagonal changing beside a
+    // live change is still a new LU of the live part, the reduction kept, and exact.
+    let (len, ties) = (400, 40);
+    let open: Vec<usize> = (0..36).collect();
+    let with_weight = |open: &[usize], extra: f64| {
+        let mut e = tied_chains_entries(len, ties, open);
+        e.push((2 * len + 10, 2 * len + 10, extra));
+        SparseMatrix::from_entries(2 * len + ties, &e)
+    };
+    let first = with_weight(&open, 0.0);
+    let mut s = knowing_multipliers(&first, 2 * len, 1);
+    assert!(solve_error(&mut s, &first) < 1e-12);
+    let reduced_at = s.base.reduction.as_ref().expect("reduced").values.clone();
+    let swapped: Vec<usize> = (0..35).chain([37]).collect();
+    for extra in [2.0, -1.5, 0.0] {
+        let a = with_weight(&swapped, extra);
+        let err = solve_error(&mut s, &a);
+        assert!(err < 1e-12, "diagonal + {extra}: max error {err}");
+        assert_eq!(
+            s.base.reduction.as_ref().unwrap().values,
+            reduced_at,
+            "diagonal + {extra}: the reduction kept"
+        );
+    }
+}
