@@ -24,8 +24,9 @@ use faer::{Accum, Mat, Par};
 const MIN_PASSIVE: usize = if cfg!(test) { 4 } else { 256 };
 
 /// Whether reducing pays, in flops: with `whole` coupled unknowns factorised whole, or
-/// `passive` and `live` ones reduced, and `coming` LUs with the bodies kept to follow (each
-/// a whole LU, or one of the live part). The flops predict the times (SSNP154 D mortar at
+/// `passive` and `live` ones reduced (the live LU of the `live_coupled` among them: the
+/// others, decoupled, are solved by their diagonal), and `coming` LUs with the bodies kept
+/// to follow (each a whole LU, or one of the live part). The flops predict the times (SSNP154 D mortar at
 /// 266k: a reduction of 1694 + 1990 unknowns took 0.50 s, an LU of 3096 0.30 s), but a
 /// reduction also holds more memory, and a live LU may not serve (a point closing beyond
 /// the live unknowns): it is made when it saves a quarter of the flops at least.
