@@ -65,18 +65,11 @@ impl LiveLu {
         self.lu.factor(m);
     }
 
-    /// Solves in place for the columns of `rhs` (rows: the live unknowns); `many`: the
-    /// columns shared by the pool's threads (`DenseLu::solve_many`).
-    pub(super) fn solve(&self, rhs: &mut Mat<f64>, many: bool) {
-        let solve = |m: &mut Mat<f64>| {
-            if many {
-                self.lu.solve_many(m)
-            } else {
-                self.lu.solve(m)
-            }
-        };
+    /// Solves in place for the columns of `rhs` (rows: the live unknowns), shared by the
+    /// pool's threads when they are many (`DenseLu::solve_many`).
+    pub(super) fn solve(&self, rhs: &mut Mat<f64>) {
         if self.decoupled.is_empty() {
-            solve(rhs);
+            self.lu.solve_many(rhs);
             return;
         }
         let nc = rhs.ncols();
@@ -89,7 +82,7 @@ impl LiveLu {
             return;
         }
         let mut part = Mat::from_fn(self.coupled.len(), nc, |r, j| rhs[(self.coupled[r], j)]);
-        solve(&mut part);
+        self.lu.solve_many(&mut part);
         for (r, &i) in self.coupled.iter().enumerate() {
             for j in 0..nc {
                 rhs[(i, j)] = part[(r, j)];
@@ -140,10 +133,11 @@ mod tests {
             vec![1, 4, 6]
         );
         assert_eq!(lu.coupled, vec![0, 2, 3, 5, 7]);
-        for (c, many) in [(1, false), (3, false), (20, true)] {
+        // (20 columns: shared by the pool's threads)
+        for c in [1, 3, 20] {
             let b = Mat::from_fn(n, c, |i, j| (0.7 * i as f64 + j as f64).cos());
             let mut x = b.clone();
-            lu.solve(&mut x, many);
+            lu.solve(&mut x);
             let res = residual(&a, &x, &b);
             assert!(res < 1e-14, "{c} right-hand sides: residual {res}");
         }
@@ -161,7 +155,7 @@ mod tests {
         assert!(lu.decoupled.is_empty() && lu.coupled.is_empty());
         let b = Mat::from_fn(n, 1, |i, _| i as f64 - 2.5);
         let mut x = b.clone();
-        lu.solve(&mut x, false);
+        lu.solve(&mut x);
         let res = residual(&full, &x, &b);
         assert!(res < 1e-14, "residual {res}");
     }
@@ -174,7 +168,7 @@ mod tests {
         m.copy_from(&a);
         lu.factor(m);
         let mut x = Mat::from_fn(3, 1, |i, _| 1.0 + i as f64);
-        lu.solve(&mut x, false);
+        lu.solve(&mut x);
         for i in 0..3 {
             assert_eq!(x[(i, 0)], (1.0 + i as f64) / (2.0 + i as f64));
         }

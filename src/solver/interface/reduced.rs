@@ -26,10 +26,11 @@ const MIN_PASSIVE: usize = if cfg!(test) { 4 } else { 256 };
 /// Whether reducing pays, in flops: with `whole` coupled unknowns factorised whole, or
 /// `passive` and `live` ones reduced (the live LU of the `live_coupled` among them: the
 /// others, decoupled, are solved by their diagonal), and `coming` LUs with the bodies kept
-/// to follow (each a whole LU, or one of the live part). The flops predict the times (SSNP154 D mortar at
-/// 266k: a reduction of 1694 + 1990 unknowns took 0.50 s, an LU of 3096 0.30 s), but a
-/// reduction also holds more memory, and a live LU may not serve (a point closing beyond
-/// the live unknowns): it is made when it saves a quarter of the flops at least.
+/// to follow (each a whole LU, or one of the live part). The flops predict the times
+/// (SSNP154 D mortar at 266k: a reduction of 1694 + 1990 unknowns took 0.50 s, an LU of
+/// 3096 0.30 s), but a reduction also holds more memory, and a live LU may not serve (a
+/// point closing beyond the live unknowns): it is made when it saves a quarter of the flops
+/// at least.
 pub(super) fn pays(
     whole: usize,
     passive: usize,
@@ -366,26 +367,18 @@ impl Reduction {
         let c = m.ncols();
         let mut bp = Mat::from_fn(self.passive.len(), c, |i, j| m[(self.passive[i], j)]);
         let mut bl = Mat::from_fn(self.live.len(), c, |i, j| m[(self.live[i], j)]);
-        let many = c >= 16;
-        let solve = |lu: &DenseLu, v: &mut Mat<f64>| {
-            if many {
-                lu.solve_many(v)
-            } else {
-                lu.solve(v)
-            }
-        };
         match &self.passive_factor {
             // z = L⁻¹ b_P, b_L − Wᵀ z, x_L = R⁻¹ (…), x_P = L⁻ᵀ (z − W x_L)
             PassiveFactor::Cholesky(blocks) => {
                 blocks.forward(&mut bp, &mut bl);
-                self.ll.solve(&mut bl, many);
+                self.ll.solve(&mut bl);
                 blocks.backward(&mut bp, &bl);
             }
             PassiveFactor::Lu { pp, x, lp } => {
                 // b_L − T_LP T_PP⁻¹ b_P
-                solve(pp, &mut bp);
+                pp.solve_many(&mut bp);
                 matmul(bl.as_mut(), Accum::Add, lp, bp.as_ref(), -1.0, Par::Seq);
-                self.ll.solve(&mut bl, many);
+                self.ll.solve(&mut bl);
                 matmul(
                     bp.as_mut(),
                     Accum::Add,
