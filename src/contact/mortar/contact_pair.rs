@@ -218,7 +218,13 @@ impl ContactPair for Mortar {
                 let tangential: Vec<usize> = mults.iter().map(|m| m + nm).collect();
                 mults.extend(tangential);
             }
-            let mut all: Vec<usize> = nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect();
+            // (a slave cell with no master cell within reach has no coupling yet: its
+            // nodes stay inside their body, out of the interface)
+            let mut all: Vec<usize> = if self.pattern_candidates[ic].is_empty() {
+                vec![]
+            } else {
+                nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect()
+            };
             all.extend_from_slice(&mults);
             cliques.push(all);
         }

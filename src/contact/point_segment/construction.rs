@@ -3,7 +3,9 @@
 
 use super::super::projection::point_and_tangent;
 use super::super::surface::Surface;
-use super::{initial_candidates, Integration, Options, Point, PointToSegment, CANDIDATE_MARGIN};
+use super::{
+    pattern_candidates_within, Integration, Options, Point, PointToSegment, CANDIDATE_MARGIN,
+};
 use crate::fem::element::{shape, MAX_NODES};
 use crate::fem::material::Modelisation;
 use crate::fem::quadrature::gauss_legendre;
@@ -188,7 +190,8 @@ impl PointToSegment {
         let n_mult = mult_nodes.len();
         let n_points = points.len();
         let rho_f = opts.rho_f;
-        let candidates = initial_candidates(mesh, &slave, &master, CANDIDATE_MARGIN);
+        let candidates =
+            pattern_candidates_within(mesh, None, &slave, &master, CANDIDATE_MARGIN, 0.0);
         let mut pair = PointToSegment {
             slave,
             master,

@@ -37,7 +37,9 @@ mod pairing;
 mod residual;
 mod status;
 
-pub use candidates::{candidates_at, candidates_within, initial_candidates};
+pub use candidates::{
+    candidates_at, candidates_within, initial_candidates, pattern_candidates_within,
+};
 
 use super::surface::Surface;
 use crate::fem::element::MAX_NODES;
@@ -122,9 +124,11 @@ impl Default for Options {
 }
 
 /// A point is paired with the master surface only within this many times the larger of
-/// its cell's and the nearest master cell's length; the initial candidates reach further
-/// (CANDIDATE_MARGIN times the cells' sizes), so that a body closing a gap of about one
-/// cell pairs inside the initial pattern (no new analysis of the matrix).
+/// its cell's and the nearest master cell's length. The pattern holds the candidates
+/// within CANDIDATE_MARGIN times the smaller of the cells' sizes (`pattern_candidates_within`),
+/// and takes in a paired point's cell once the point is that near or in contact
+/// (`pair`), so that a body closing a gap of a few fine cells pairs inside the initial
+/// pattern (no new analysis of the matrix).
 const PAIRING_REACH: f64 = 2.0;
 
 /// How far (in the parametric coordinate, of 2 per cell) a point's projection may leave

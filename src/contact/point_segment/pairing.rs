@@ -5,7 +5,7 @@
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
 use super::{
-    candidates_at, candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS,
+    pattern_candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS,
     PAIRING_REACH,
 };
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
@@ -113,8 +113,15 @@ impl PointToSegment {
                 PAIRING_REACH * length(self.slave.cells[ic]).max(length(self.master.cells[im]));
             d2 <= reach * reach
         });
-        if let Some((_, im, _, _)) = best {
-            if !self.candidates[ic].contains(&im) {
+        // The pattern takes in the point's cell when the point is within the candidates'
+        // margin of it (of the smaller cell), or in contact: a point paired farther is
+        // open and couples nothing, and a far coarse slave cell paired with a coarse master
+        // cell would bring the fine cells around into the contact interface for nothing.
+        if let Some((d2, im, _, _)) = best {
+            let reserve =
+                CANDIDATE_MARGIN * length(self.slave.cells[ic]).min(length(self.master.cells[im]));
+            let near = d2 <= reserve * reserve || self.points[i].active;
+            if near && !self.candidates[ic].contains(&im) {
                 self.add_candidates(mesh, ic, im);
             }
         }
@@ -176,9 +183,10 @@ impl PointToSegment {
             all.iter().filter(|&&c| c).count()
         };
         let (slave, master) = (&self.slave, &self.master);
-        let at_u = candidates_at(mesh, Some(u), slave, master, CANDIDATE_MARGIN);
+        let at_u = pattern_candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, 0.0);
         let at_u = beyond(at_u);
-        let within = candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, reach);
+        let within =
+            pattern_candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, reach);
         let within = beyond(within);
         let new = if cells(&within) <= 2 * cells(&at_u) {
             within

@@ -1,6 +1,7 @@
 //! Anticipated candidates: a block lifted ten cells above a foundation has none; a
 //! predicted displacement that sets it down brings every slave cell within reach at once,
-//! and a prediction gone wild is refused.
+//! and a prediction gone wild is refused. A coarse block half a cell of its own above a
+//! fine foundation reserves no pattern until it comes within a few fine cells.
 
 use super::*;
 use crate::fem::material::Modelisation;
@@ -56,7 +57,8 @@ fn a_predicted_displacement_brings_the_slave_cells_within_reach_at_once() {
     // the candidates held, and those of a prediction (`reach` 0: at u alone)
     let (slave, master) = (p.slave.clone(), p.master.clone());
     let union = |held: &[Vec<usize>], u: &[f64], reach: f64| -> Vec<Vec<usize>> {
-        let near = candidates_within(&mesh, Some(u), &slave, &master, CANDIDATE_MARGIN, reach);
+        let near =
+            pattern_candidates_within(&mesh, Some(u), &slave, &master, CANDIDATE_MARGIN, reach);
         let mut all: Vec<Vec<usize>> = held.to_vec();
         for (list, more) in all.iter_mut().zip(near) {
             let new: Vec<usize> = more.into_iter().filter(|m| !list.contains(m)).collect();
@@ -91,4 +93,50 @@ fn a_predicted_displacement_brings_the_slave_cells_within_reach_at_once() {
     p.anticipate(&mesh, &nudged, 0.6);
     assert_eq!(p.candidates_generation, 3);
     assert_eq!(sorted(&p.candidates), expected);
+}
+
+/// A block of 2 × 2 cells a gap of 0.5 (five cells of 0.1 of the foundation, a quarter of
+/// its own) above a fine foundation; the block's nodes come last.
+fn coarse_block_over_fine() -> (Mesh, usize) {
+    let lower = rectangle([0.0, -1.0], 20.0, 1.0, 200, 10, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([6.0, 0.5], 8.0, 2.0, 4, 1, CellKind::Quad4, 0.0).unwrap();
+    let mut b = MeshBuilder::new("coarse block");
+    b.append(&lower, |g| format!("Lower{g}"));
+    b.append(&upper, |g| format!("Upper{g}"));
+    (b.finish().unwrap(), lower.num_nodes())
+}
+
+#[test]
+fn a_coarse_cell_far_in_fine_cells_reserves_no_pattern_until_it_comes_near() {
+    let (mesh, first_upper) = coarse_block_over_fine();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    // within three of the larger cells (the block's: 6.0) every slave cell has candidates;
+    // within three of the smaller (the foundation's: 0.3) none has
+    let near = candidates_within(&mesh, None, &slave, &master, CANDIDATE_MARGIN, 0.0);
+    assert!(near.iter().all(|c| !c.is_empty()));
+    let reserved = pattern_candidates_within(&mesh, None, &slave, &master, CANDIDATE_MARGIN, 0.0);
+    assert!(reserved.iter().all(Vec::is_empty));
+    let closed = Options {
+        initial: InitialStatus::Closed,
+        ..Options::default()
+    };
+    let mut p = PointToSegment::new(&mesh, slave, master, closed, Modelisation::PlaneStrain, 1.0);
+    // its points pair (within twice the block's cell) but, open and far in fine cells,
+    // bring nothing into the pattern
+    p.initialise(&mesh);
+    assert!(p.points.iter().any(|q| !q.excluded), "paired");
+    assert!(p.points.iter().all(|q| !q.active));
+    assert!(p.candidates.iter().all(Vec::is_empty));
+    assert_eq!(p.candidates_generation, 0);
+    // lowered to a gap of 0.2 (two fine cells): every slave cell's points pair within the
+    // reserve, and their cells join the pattern
+    let mut u = vec![0.0; 2 * mesh.num_nodes()];
+    for n in first_upper..mesh.num_nodes() {
+        u[2 * n + 1] = -0.3;
+    }
+    for i in 0..p.points.len() {
+        p.pair(&mesh, &u, i, true);
+    }
+    assert!(p.candidates.iter().all(|c| !c.is_empty()));
 }

@@ -453,7 +453,10 @@ pub(super) fn iterate_step(
             resolves = 0;
             continue;
         }
-        if let Err(e) = solved {
+        // (a solve whose values overflowed is the same singular matrix as one whose
+        // increment is huge, whichever the factorisation's order made it)
+        let overflowed = solved.is_err() && r.iter().any(|v| !v.is_finite());
+        if let (Err(e), false) = (solved, overflowed) {
             // no smaller step needs less memory: stop at once
             if matches!(e, Error::Memory(_)) {
                 return Err(e);
@@ -463,8 +466,13 @@ pub(super) fn iterate_step(
         }
         last_size = step_size;
         if singular {
+            let increment = if overflowed {
+                "non-finite displacement increment".to_string()
+            } else {
+                format!("displacement increment {step_size:.1e}")
+            };
             failure = Some(format!(
-                "the stiffness matrix is singular (displacement increment {step_size:.1e}): the model has a \
+                "the stiffness matrix is singular ({increment}): the model has a \
                  rigid-body mode (a body not held by imposed displacements or contact; a body \
                  held by contact alone needs some contact points closed at the start: \
                  initial = \"closed\" with initial_gap = a small distance)"
