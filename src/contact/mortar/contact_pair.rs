@@ -3,7 +3,7 @@
 //! updates and re-pairing, step commit and restore, and the pair's outputs.
 
 use super::super::pair::ContactPair;
-use super::super::point_segment::{candidates_at, candidates_within};
+use super::super::point_segment::{candidates_within, swept_candidates};
 use super::super::surface::Surface;
 use super::active_set::{self, row_weights};
 use super::friction::Branch;
@@ -238,15 +238,16 @@ impl ContactPair for Mortar {
         // stay candidates whatever the iterate (a first iterate held by one touching node
         // may move a body far through the other), and those near in the deformed one join
         // them (the initial gaps that have closed, and overlaps however deep: see
-        // `overlap_reach`).
+        // `overlap_reach`), sought along the slave cell's normal, on both geometries (its
+        // normals project on the reference one).
         let reach = if self.small {
             self.overlap_reach(mesh, u)
         } else {
             0.0
         };
-        let mut near = candidates_within(mesh, Some(u), &self.slave, &self.master, 1.0, reach);
+        let mut near = swept_candidates(mesh, Some(u), &self.slave, &self.master, 1.0, reach);
         if self.small {
-            let reference = candidates_at(mesh, None, &self.slave, &self.master, 1.0);
+            let reference = swept_candidates(mesh, None, &self.slave, &self.master, 1.0, reach);
             for (n, r) in near.iter_mut().zip(reference) {
                 for im in r {
                     if !n.contains(&im) {

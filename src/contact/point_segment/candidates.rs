@@ -36,7 +36,9 @@ pub fn candidates_within(
     margin: f64,
     reach: f64,
 ) -> Vec<Vec<usize>> {
-    within(mesh, u, (slave, master), reach, |s, m| margin * s.max(m))
+    within(mesh, u, (slave, master), reach, 0.0, |s, m| {
+        margin * s.max(m)
+    })
 }
 
 /// The master cells whose couplings with each slave cell a matrix pattern reserves: as
@@ -56,26 +58,51 @@ pub fn pattern_candidates_within(
     margin: f64,
     reach: f64,
 ) -> Vec<Vec<usize>> {
-    within(mesh, u, (slave, master), reach, |s, m| margin * s.min(m))
+    within(mesh, u, (slave, master), reach, 0.0, |s, m| {
+        margin * s.min(m)
+    })
+}
+
+/// As `candidates_within` without a reach, each slave cell's box taken over the cell swept
+/// `sweep` both ways along its chord's normal: the master cells a body carried through
+/// another, or a gap closed, brings along the normal, without those beside them (a reach
+/// of `sweep` all around held 2 sweep / h master cells of size h for each slave cell).
+pub fn swept_candidates(
+    mesh: &Mesh,
+    u: Option<&[f64]>,
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+    sweep: f64,
+) -> Vec<Vec<usize>> {
+    within(mesh, u, (slave, master), 0.0, sweep, |s, m| {
+        margin * s.max(m)
+    })
 }
 
 /// The master cells of each slave cell whose bounding boxes, on the geometry displaced by
-/// `u`, come within `margin(slave size, master size)` or `reach` of each other.
+/// `u`, come within `margin(slave size, master size)` or `reach` of each other, the slave
+/// cell's box taken over the cell swept `sweep` both ways along its chord's normal.
 fn within(
     mesh: &Mesh,
     u: Option<&[f64]>,
     (slave, master): (&Surface, &Surface),
     reach: f64,
+    sweep: f64,
     margin: impl Fn(f64, f64) -> f64,
 ) -> Vec<Vec<usize>> {
+    let at = |n: usize| -> [f64; 2] {
+        let x = mesh.coords[n];
+        u.map_or(x, |u| [x[0] + u[2 * n], x[1] + u[2 * n + 1]])
+    };
     let bbox = |c: usize| {
         let mut lo = [f64::MAX; 2];
         let mut hi = [f64::MIN; 2];
         for &n in mesh.cell_nodes(c) {
+            let x = at(n);
             for d in 0..2 {
-                let x = mesh.coords[n][d] + u.map_or(0.0, |u| u[2 * n + d]);
-                lo[d] = lo[d].min(x);
-                hi[d] = hi[d].max(x);
+                lo[d] = lo[d].min(x[d]);
+                hi[d] = hi[d].max(x[d]);
             }
         }
         (lo, hi)
@@ -85,8 +112,21 @@ fn within(
         .cells
         .iter()
         .map(|&sc| {
-            let (slo, shi) = bbox(sc);
+            let (mut slo, mut shi) = bbox(sc);
             let ssize = (shi[0] - slo[0]).hypot(shi[1] - slo[1]);
+            let nodes = mesh.cell_nodes(sc);
+            let (a, b) = (at(nodes[0]), at(nodes[1]));
+            let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
+            if sweep > 0.0 && chord > 0.0 {
+                let s = [(a[1] - b[1]) / chord * sweep, (b[0] - a[0]) / chord * sweep];
+                for &n in nodes {
+                    let x = at(n);
+                    for d in 0..2 {
+                        slo[d] = slo[d].min(x[d] - s[d].abs());
+                        shi[d] = shi[d].max(x[d] + s[d].abs());
+                    }
+                }
+            }
             mboxes
                 .iter()
                 .enumerate()

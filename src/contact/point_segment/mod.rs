@@ -39,6 +39,7 @@ mod status;
 
 pub use candidates::{
     candidates_at, candidates_within, initial_candidates, pattern_candidates_within,
+    swept_candidates,
 };
 
 use super::surface::Surface;

@@ -1,7 +1,8 @@
 //! Anticipated candidates: a block lifted ten cells above a foundation has none; a
 //! predicted displacement that sets it down brings every slave cell within reach at once,
 //! and a prediction gone wild is refused. A coarse block half a cell of its own above a
-//! fine foundation reserves no pattern until it comes within a few fine cells.
+//! fine foundation reserves no pattern until it comes within a few fine cells. A body
+//! carried through another finds the master cells along its normal, not those beside.
 
 use super::*;
 use crate::fem::material::Modelisation;
@@ -139,4 +140,30 @@ fn a_coarse_cell_far_in_fine_cells_reserves_no_pattern_until_it_comes_near() {
         p.pair(&mesh, &u, i, true);
     }
     assert!(p.candidates.iter().all(|c| !c.is_empty()));
+}
+
+#[test]
+fn a_body_carried_through_another_finds_the_cells_along_its_normal_not_beside() {
+    // the block set 1.3 down from a gap of 1.0: its bottom 0.3 inside the foundation
+    let (mesh, first_upper) = lifted_block();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let mut u = vec![0.0; 2 * mesh.num_nodes()];
+    for n in first_upper..mesh.num_nodes() {
+        u[2 * n + 1] = -1.3;
+    }
+    let around = candidates_within(&mesh, Some(&u), &slave, &master, 1.0, 0.4);
+    let swept = swept_candidates(&mesh, Some(&u), &slave, &master, 1.0, 0.4);
+    for (ic, (a, s)) in around.iter().zip(&swept).enumerate() {
+        // the master cell under the slave cell (cells of 0.1 from x = 0; the block's from
+        // x = 0.3) and its neighbours within the margin (0.1, ends included): five at most
+        assert!(s.contains(&(ic + 3)), "cell {ic}: {s:?}");
+        assert!(s.iter().all(|m| a.contains(m)));
+        assert!(s.len() <= 5, "cell {ic}: {} swept", s.len());
+        // all around: the 0.4 reach both ways along the surface, 8 or more
+        assert!(a.len() >= 8, "cell {ic}: {} around", a.len());
+    }
+    // not inside: no sweep reaches the foundation from a gap of 1.0
+    let none = swept_candidates(&mesh, None, &slave, &master, 1.0, 0.4);
+    assert!(none.iter().all(Vec::is_empty));
 }
