@@ -12,11 +12,17 @@ use crate::mesh::{CellKind, Mesh, MeshBuilder};
 /// A 1.4 × 0.5 block (cells of side 0.1, groups `Upper…`) a gap of 1.0 above a 20 × 1
 /// foundation (groups `Lower…`); the block's nodes come last.
 fn lifted_block() -> (Mesh, usize) {
-    let lower = rectangle([0.0, -1.0], 20.0, 1.0, 200, 10, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([0.3, 1.0], 1.4, 0.5, 14, 5, CellKind::Quad4, 0.0).unwrap();
-    let mut b = MeshBuilder::new("lifted block");
+    over_foundation(&upper)
+}
+
+/// `upper` (groups `Upper…`) over a 20 × 1 foundation of cells of side 0.1 (groups
+/// `Lower…`) whose top is y = 0; the upper body's nodes come last.
+fn over_foundation(upper: &Mesh) -> (Mesh, usize) {
+    let lower = rectangle([0.0, -1.0], 20.0, 1.0, 200, 10, CellKind::Quad4, 0.0).unwrap();
+    let mut b = MeshBuilder::new("block over a foundation");
     b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
+    b.append(upper, |g| format!("Upper{g}"));
     (b.finish().unwrap(), lower.num_nodes())
 }
 
@@ -99,12 +105,8 @@ fn a_predicted_displacement_brings_the_slave_cells_within_reach_at_once() {
 /// A block of 2 × 2 cells a gap of 0.5 (five cells of 0.1 of the foundation, a quarter of
 /// its own) above a fine foundation; the block's nodes come last.
 fn coarse_block_over_fine() -> (Mesh, usize) {
-    let lower = rectangle([0.0, -1.0], 20.0, 1.0, 200, 10, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([6.0, 0.5], 8.0, 2.0, 4, 1, CellKind::Quad4, 0.0).unwrap();
-    let mut b = MeshBuilder::new("coarse block");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    (b.finish().unwrap(), lower.num_nodes())
+    over_foundation(&upper)
 }
 
 #[test]
