@@ -13,21 +13,11 @@ pub fn initial_candidates(
     master: &Surface,
     margin: f64,
 ) -> Vec<Vec<usize>> {
-    candidates_at(mesh, None, slave, master, margin)
+    candidates_within(mesh, None, slave, master, margin, 0.0)
 }
 
-/// The same on the geometry displaced by `u` (full dofs), when given.
-pub fn candidates_at(
-    mesh: &Mesh,
-    u: Option<&[f64]>,
-    slave: &Surface,
-    master: &Surface,
-    margin: f64,
-) -> Vec<Vec<usize>> {
-    candidates_within(mesh, u, slave, master, margin, 0.0)
-}
-
-/// The same, the boxes grown by at least `reach` (a distance).
+/// The same on the geometry displaced by `u` (full dofs) when given, the boxes grown by at
+/// least `reach` (a distance).
 pub fn candidates_within(
     mesh: &Mesh,
     u: Option<&[f64]>,
@@ -118,13 +108,11 @@ fn within(
             let (a, b) = (at(nodes[0]), at(nodes[1]));
             let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
             if sweep > 0.0 && chord > 0.0 {
+                // (the box of the cell moved ± sweep n: its own, grown by |sweep n|)
                 let s = [(a[1] - b[1]) / chord * sweep, (b[0] - a[0]) / chord * sweep];
-                for &n in nodes {
-                    let x = at(n);
-                    for d in 0..2 {
-                        slo[d] = slo[d].min(x[d] - s[d].abs());
-                        shi[d] = shi[d].max(x[d] + s[d].abs());
-                    }
+                for d in 0..2 {
+                    slo[d] -= s[d].abs();
+                    shi[d] += s[d].abs();
                 }
             }
             mboxes

@@ -38,8 +38,7 @@ mod residual;
 mod status;
 
 pub use candidates::{
-    candidates_at, candidates_within, initial_candidates, pattern_candidates_within,
-    swept_candidates,
+    candidates_within, initial_candidates, pattern_candidates_within, swept_candidates,
 };
 
 use super::surface::Surface;
