@@ -66,6 +66,7 @@ impl Mortar {
                 self.active[j] = proposed[j];
             }
         }
+        self.grow_pattern(Some(lam));
         Some(changes)
     }
 

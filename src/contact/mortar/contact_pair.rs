@@ -3,13 +3,13 @@
 //! updates and re-pairing, step commit and restore, and the pair's outputs.
 
 use super::super::pair::ContactPair;
-use super::super::point_segment::{candidates_within, swept_candidates};
+use super::super::point_segment::{candidates_within, pattern_candidates_within, swept_candidates};
 use super::super::surface::Surface;
 use super::active_set::{self, row_weights};
 use super::friction::Branch;
 use super::linearisation::linear_tangent;
 use super::segments::CellTerms;
-use super::{add_to_pattern, Mortar};
+use super::{add_new, Mortar, PATTERN_MARGIN};
 use crate::assembly::coupled::Triplets;
 use crate::mesh::Mesh;
 use std::sync::atomic::Ordering;
@@ -30,9 +30,6 @@ impl ContactPair for Mortar {
         // iterations, D 88 → 29).
         if let Some(gap) = self.initial_gap {
             let near = candidates_within(mesh, None, &self.slave, &self.master, 1.0, gap);
-            if add_to_pattern(&mut self.pattern_candidates, &near) {
-                self.pattern_generation += 1;
-            }
             // (also those a cut first step restores)
             self.saved_candidates.clone_from(&near);
             self.candidates = near;
@@ -70,6 +67,7 @@ impl ContactPair for Mortar {
                 }
             }
         }
+        self.grow_pattern(None);
         self.saved = self.active.clone();
     }
 
@@ -103,8 +101,10 @@ impl ContactPair for Mortar {
             }
             for &(j, dof, v) in &t.force {
                 ru[dof] += lam[j] * v;
-                // K_uλ
-                k.add(dof, ndof + mult_base + j, v);
+                // K_uλ (not of an open node with a zero multiplier: its correction is zero)
+                if self.active[j] || lam[j] != 0.0 {
+                    k.add(dof, ndof + mult_base + j, v);
+                }
             }
         }
         self.last_d.lock().unwrap().clone_from(&d);
@@ -161,11 +161,15 @@ impl ContactPair for Mortar {
             for j in 0..nm {
                 let tj = lam[nm + j];
                 let row = ndof + mult_base + nm + j;
+                law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
+                // (K_ut: not of a free node with a zero traction, as K_uλ above)
+                let coupled = law[j] != Branch::Free || tj != 0.0;
                 for &(dof, v) in &tf[j] {
                     ru[dof] += tj * v;
-                    k.add(dof, row, v);
+                    if coupled {
+                        k.add(dof, row, v);
+                    }
                 }
-                law[j] = self.branch(j, lam, sl[j], d[j], lmax, mu);
                 match law[j] {
                     Branch::Free => {
                         rl[nm + j] += -tj * row_d[j] / self.c;
@@ -218,9 +222,9 @@ impl ContactPair for Mortar {
                 let tangential: Vec<usize> = mults.iter().map(|m| m + nm).collect();
                 mults.extend(tangential);
             }
-            // (a slave cell with no master cell within reach has no coupling yet: its
-            // nodes stay inside their body, out of the interface)
-            let mut all: Vec<usize> = if self.pattern_candidates[ic].is_empty() {
+            // (a slave cell not reserved has no coupling yet: its nodes stay inside their
+            // body, out of the interface)
+            let mut all: Vec<usize> = if !self.reserved[ic] {
                 vec![]
             } else {
                 nodes.iter().flat_map(|&n| [2 * n, 2 * n + 1]).collect()
@@ -261,9 +265,6 @@ impl ContactPair for Mortar {
         let mut changed = vec![];
         if near != self.candidates {
             changes += 1;
-            if add_to_pattern(&mut self.pattern_candidates, &near) {
-                self.pattern_generation += 1;
-            }
             self.candidates = near;
         }
         let (g, d, facing, sl) = self.gaps(mesh, u);
@@ -296,7 +297,53 @@ impl ContactPair for Mortar {
             }
         }
         self.changed = changed;
+        self.grow_pattern(Some(lam));
         changes
+    }
+
+    fn pattern_generation(&self) -> usize {
+        self.pattern_generation
+    }
+
+    /// Reserves the slave cells near the master at the predicted displacement `u` (within
+    /// PATTERN_MARGIN of the smaller cell, or `reach`), with the master cells found there
+    /// and their candidates at `u`, unless the reach would more than double the master
+    /// cells that `u` alone brings into the pattern (a body predicted to slide far would
+    /// take in every master cell along its path), as point-to-segment does.
+    fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
+        let (slave, master) = (&self.slave, &self.master);
+        let at_u = pattern_candidates_within(mesh, Some(u), slave, master, PATTERN_MARGIN, 0.0);
+        let within = pattern_candidates_within(mesh, Some(u), slave, master, PATTERN_MARGIN, reach);
+        let cells = |new: &[Vec<usize>]| {
+            let mut all = vec![false; master.cells.len()];
+            let held = self.pattern_candidates.iter().zip(&self.reserved);
+            for list in held.filter(|(_, &r)| r).map(|(l, _)| l).chain(new) {
+                for &m in list {
+                    all[m] = true;
+                }
+            }
+            all.iter().filter(|&&c| c).count()
+        };
+        let new = if cells(&within) <= 2 * cells(&at_u) {
+            within
+        } else {
+            at_u
+        };
+        let integration = candidates_within(mesh, Some(u), slave, master, 1.0, 0.0);
+        let mut grew = false;
+        for (ic, (found, near)) in new.iter().zip(&integration).enumerate() {
+            if found.is_empty() {
+                continue;
+            }
+            grew |= !self.reserved[ic];
+            self.reserved[ic] = true;
+            let pattern = &mut self.pattern_candidates[ic];
+            grew |= add_new(pattern, found) | add_new(pattern, near);
+        }
+        // (and the current candidates of the cells reserved here)
+        if !self.grow_pattern(None) && grew {
+            self.pattern_generation += 1;
+        }
     }
 
     fn changed_nodes(&self) -> Vec<usize> {

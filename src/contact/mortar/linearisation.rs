@@ -341,7 +341,9 @@ impl Mortar {
                 for &(col, w) in &dg[j] {
                     k.add(rows + j, col, -w);
                 }
-            } else {
+            } else if lam[j] != 0.0 {
+                // (zero with a zero multiplier, and then outside a pattern that has not
+                // reserved the node's cells: see `Mortar::reserved`)
                 for &(col, w) in &dd[j] {
                     k.add(rows + j, col, -lam[j] / c * w);
                 }
@@ -360,11 +362,12 @@ impl Mortar {
                             k.add(row, col, -(tj - mu * lam[j] * sg) / c * w);
                         }
                     }
-                    Branch::Free => {
+                    Branch::Free if tj != 0.0 => {
                         for &(col, w) in &dd[j] {
                             k.add(row, col, -tj / c * w);
                         }
                     }
+                    Branch::Free => {}
                 }
             }
         }
