@@ -88,3 +88,53 @@ fn a_facing_node_has_the_weighted_gap_of_its_whole_support() {
         );
     }
 }
+
+/// A master end on the far corner of a slave node's cell lies within that cell: the
+/// master (a foundation's top, x in [0, 2]) ends at x = 0, under the corner of a block
+/// whose bottom runs from x = −0.5; the block's node at x = 0.1 is one cell from it. Sunk
+/// or lifted by a thousandth of a cell, the end is a hair beyond the cell's length from
+/// that node; it is under the node's cell all the same, and the node, active, faces.
+#[test]
+fn a_master_end_on_a_cells_far_corner_is_under_the_cell() {
+    let lower = rectangle([0.0, -1.0], 2.0, 1.0, 20, 4, CellKind::Quad4, 0.0).unwrap();
+    let upper = rectangle([-0.5, 0.0], 1.0, 0.5, 10, 2, CellKind::Quad4, 0.0).unwrap();
+    let mut b = MeshBuilder::new("block over a foundation's end");
+    b.append(&lower, |g| format!("Lower{g}"));
+    b.append(&upper, |g| format!("Upper{g}"));
+    let (mesh, first_upper) = (b.finish().unwrap(), lower.num_nodes());
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let mut m = Mortar::new(
+        &mesh,
+        slave,
+        master,
+        1e3,
+        Modelisation::PlaneStrain,
+        1.0,
+        false,
+    );
+    m.initialise(&mesh);
+    let k = (0..m.mult_nodes.len())
+        .find(|&k| {
+            let [x, y] = mesh.coords[m.mult_nodes[k]];
+            (x - 0.1).abs() < 1e-12 && y.abs() < 1e-12
+        })
+        .unwrap();
+    for shift in [-1e-4, 1e-4] {
+        let mut u = vec![0.0; 2 * mesh.num_nodes()];
+        for n in first_upper..mesh.num_nodes() {
+            u[2 * n + 1] = shift;
+        }
+        assert!(
+            m.under_master_end(&mesh, &u, k),
+            "shifted by {shift}: the master end is under the node's cell"
+        );
+        m.active[k] = true;
+        let terms = m.all_cell_terms(&mesh, &u);
+        let (_, d, _, _) = m.gaps(&mesh, &u);
+        assert!(
+            m.facing(&mesh, &u, &terms, &d)[k],
+            "shifted by {shift}: the active node faces"
+        );
+    }
+}
