@@ -12,10 +12,32 @@ use crate::mesh::{CellKind, MeshBuilder};
 fn block_over_foundation(kind: CellKind) -> (Mesh, usize) {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 20, 4, kind, 0.0).unwrap();
     let upper = rectangle([0.3, 0.0], 1.4, 0.5, 14, 4, kind, 0.0).unwrap();
+    lower_and_upper(&lower, &upper)
+}
+
+/// The two bodies in one mesh (groups `Lower…`, `Upper…`), and the first upper node.
+fn lower_and_upper(lower: &Mesh, upper: &Mesh) -> (Mesh, usize) {
     let mut b = MeshBuilder::new("block over foundation");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
+    b.append(lower, |g| format!("Lower{g}"));
+    b.append(upper, |g| format!("Upper{g}"));
     (b.finish().unwrap(), lower.num_nodes())
+}
+
+/// The mortar pair of the upper body's bottom (slave) on the lower body's top, initialised.
+fn upper_on_lower(mesh: &Mesh) -> Mortar {
+    let slave = Surface::from_group(mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(mesh, "LowerTop", "master").unwrap();
+    let mut m = Mortar::new(
+        mesh,
+        slave,
+        master,
+        1e3,
+        Modelisation::PlaneStrain,
+        1.0,
+        false,
+    );
+    m.initialise(mesh);
+    m
 }
 
 /// Nodes facing the master have the exact weighted gap D_j g(x_j); nodes within a cell's
@@ -25,18 +47,7 @@ fn block_over_foundation(kind: CellKind) -> (Mesh, usize) {
 fn a_facing_node_has_the_weighted_gap_of_its_whole_support() {
     for kind in [CellKind::Quad4, CellKind::Quad8] {
         let (mesh, first_upper) = block_over_foundation(kind);
-        let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
-        let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
-        let mut m = Mortar::new(
-            &mesh,
-            slave,
-            master,
-            1e3,
-            Modelisation::PlaneStrain,
-            1.0,
-            false,
-        );
-        m.initialise(&mesh);
+        let mut m = upper_on_lower(&mesh);
         // the block turned by θ about its bottom-left corner (0.3, 0), then sunk by δ:
         // along its bottom, at distance s from that corner, the gap is
         // (s sin θ − δ) / cos θ, open by 3.4 cells at the far end
@@ -98,22 +109,8 @@ fn a_facing_node_has_the_weighted_gap_of_its_whole_support() {
 fn a_master_end_on_a_cells_far_corner_is_under_the_cell() {
     let lower = rectangle([0.0, -1.0], 2.0, 1.0, 20, 4, CellKind::Quad4, 0.0).unwrap();
     let upper = rectangle([-0.5, 0.0], 1.0, 0.5, 10, 2, CellKind::Quad4, 0.0).unwrap();
-    let mut b = MeshBuilder::new("block over a foundation's end");
-    b.append(&lower, |g| format!("Lower{g}"));
-    b.append(&upper, |g| format!("Upper{g}"));
-    let (mesh, first_upper) = (b.finish().unwrap(), lower.num_nodes());
-    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
-    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
-    let mut m = Mortar::new(
-        &mesh,
-        slave,
-        master,
-        1e3,
-        Modelisation::PlaneStrain,
-        1.0,
-        false,
-    );
-    m.initialise(&mesh);
+    let (mesh, first_upper) = lower_and_upper(&lower, &upper);
+    let mut m = upper_on_lower(&mesh);
     let k = (0..m.mult_nodes.len())
         .find(|&k| {
             let [x, y] = mesh.coords[m.mult_nodes[k]];
