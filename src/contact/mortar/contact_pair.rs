@@ -3,7 +3,7 @@
 //! updates and re-pairing, step commit and restore, and the pair's outputs.
 
 use super::super::pair::ContactPair;
-use super::super::point_segment::{candidates_within, pattern_candidates_within, swept_candidates};
+use super::super::point_segment::{anticipated_candidates, candidates_within, swept_candidates};
 use super::super::surface::Surface;
 use super::active_set::{self, row_weights};
 use super::friction::Branch;
@@ -305,33 +305,21 @@ impl ContactPair for Mortar {
         self.pattern_generation
     }
 
-    /// Reserves the slave cells near the master at the predicted displacement `u` (within
-    /// PATTERN_MARGIN of the smaller cell, or `reach`), with the master cells found there
-    /// and their candidates at `u`, unless the reach would more than double the master
-    /// cells that `u` alone brings into the pattern (a body predicted to slide far would
-    /// take in every master cell along its path), as point-to-segment does.
+    /// Reserves the slave cells near the master at the predicted displacement `u`
+    /// (`anticipated_candidates`, as point-to-segment's), with the master cells found
+    /// there and their candidates at `u`.
     fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
-        let (slave, master) = (&self.slave, &self.master);
-        let at_u = pattern_candidates_within(mesh, Some(u), slave, master, PATTERN_MARGIN, 0.0);
-        let within = pattern_candidates_within(mesh, Some(u), slave, master, PATTERN_MARGIN, reach);
-        let cells = |new: &[Vec<usize>]| {
-            let mut all = vec![false; master.cells.len()];
-            let held = self.pattern_candidates.iter().zip(&self.reserved);
-            for list in held.filter(|(_, &r)| r).map(|(l, _)| l).chain(new) {
-                for &m in list {
-                    all[m] = true;
-                }
-            }
-            all.iter().filter(|&&c| c).count()
-        };
-        let new = if cells(&within) <= 2 * cells(&at_u) {
-            within
-        } else {
-            at_u
-        };
-        let integration = candidates_within(mesh, Some(u), slave, master, 1.0, 0.0);
+        let surfaces = (&self.slave, &self.master);
+        let held = self
+            .pattern_candidates
+            .iter()
+            .zip(&self.reserved)
+            .filter(|(_, &r)| r)
+            .map(|(l, _)| l);
+        let found = anticipated_candidates(mesh, u, surfaces, (PATTERN_MARGIN, reach), held);
+        let integration = candidates_within(mesh, Some(u), surfaces.0, surfaces.1, 1.0, 0.0);
         let mut grew = false;
-        for (ic, (found, near)) in new.iter().zip(&integration).enumerate() {
+        for (ic, (found, near)) in found.iter().zip(&integration).enumerate() {
             if found.is_empty() {
                 continue;
             }

@@ -211,15 +211,13 @@ impl Mortar {
         let candidates = initial_candidates(mesh, &slave, &master, 1.0);
         let mut pattern_candidates =
             pattern_candidates_within(mesh, None, &slave, &master, PATTERN_MARGIN, 0.0);
-        let reserved: Vec<bool> = pattern_candidates.iter().map(|p| !p.is_empty()).collect();
-        for ((pattern, near), _) in pattern_candidates
-            .iter_mut()
-            .zip(&candidates)
-            .zip(&reserved)
-            .filter(|(_, &r)| r)
-        {
-            add_new(pattern, near);
+        // (a cell near the master reserves its integration candidates too)
+        for (pattern, near) in pattern_candidates.iter_mut().zip(&candidates) {
+            if !pattern.is_empty() {
+                add_new(pattern, near);
+            }
         }
+        let reserved = pattern_candidates.iter().map(|p| !p.is_empty()).collect();
         let mut m = Mortar {
             slave,
             master,

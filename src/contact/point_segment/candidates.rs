@@ -53,6 +53,40 @@ pub fn pattern_candidates_within(
     })
 }
 
+/// The pattern candidates to take in at the displacement `u` predicted for the loading's
+/// end: those within `margin` of the smaller cell there (`pattern_candidates_within`), and
+/// those within `reach` (a distance) of it unless these would more than double the master
+/// cells that `u` alone brings into the pattern with the cells `held` there already (a body
+/// predicted to slide far would take in every master cell along its path; the interface
+/// grows with them).
+pub fn anticipated_candidates<'a>(
+    mesh: &Mesh,
+    u: &[f64],
+    (slave, master): (&Surface, &Surface),
+    (margin, reach): (f64, f64),
+    held: impl IntoIterator<Item = &'a Vec<usize>>,
+) -> Vec<Vec<usize>> {
+    let mut in_pattern = vec![false; master.cells.len()];
+    for &m in held.into_iter().flatten() {
+        in_pattern[m] = true;
+    }
+    // the master cells of the pattern with these added
+    let cells = |new: &[Vec<usize>]| {
+        let mut all = in_pattern.clone();
+        for &m in new.iter().flatten() {
+            all[m] = true;
+        }
+        all.iter().filter(|&&c| c).count()
+    };
+    let at_u = pattern_candidates_within(mesh, Some(u), slave, master, margin, 0.0);
+    let within = pattern_candidates_within(mesh, Some(u), slave, master, margin, reach);
+    if cells(&within) <= 2 * cells(&at_u) {
+        within
+    } else {
+        at_u
+    }
+}
+
 /// As `candidates_within` without a reach, each slave cell's box taken over the cell swept
 /// `sweep` both ways along its chord's normal: the master cells a body carried through
 /// another, or a gap closed, brings along the normal, without those beside them (a reach

@@ -5,7 +5,7 @@
 use super::super::projection::{point_and_tangent, project};
 use super::super::smoothed_normal::smoothed_frame;
 use super::{
-    pattern_candidates_within, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS,
+    anticipated_candidates, Eval, PointToSegment, CANDIDATE_MARGIN, PAIRING_HYSTERESIS,
     PAIRING_REACH,
 };
 use crate::fem::element::{shape, shape_grad, MAX_NODES};
@@ -162,44 +162,30 @@ impl PointToSegment {
         self.candidates_generation += 1;
     }
 
-    /// Adds to each slave cell's candidates the master cells within reach at displacement u
-    /// (as the initial candidates on the initial geometry), and those within `reach` (a
-    /// distance) of it unless these would more than double the master cells that u alone
-    /// brings into the pattern (a body predicted to slide far would take in every master
-    /// cell along its path; the interface grows with them).
+    /// Adds to each slave cell's candidates those anticipated at displacement u
+    /// (`anticipated_candidates`: within reach there, as the initial candidates on the
+    /// initial geometry, and within `reach` of it unless that takes in too much).
     pub(super) fn anticipate(&mut self, mesh: &Mesh, u: &[f64], reach: f64) {
-        let beyond = |near: Vec<Vec<usize>>| -> Vec<Vec<usize>> {
-            let held = self.candidates.iter();
-            held.zip(near)
-                .map(|(list, more)| more.into_iter().filter(|m| !list.contains(m)).collect())
-                .collect()
-        };
-        // the master cells of the pattern with these added
-        let cells = |new: &[Vec<usize>]| {
-            let mut all = vec![false; self.master.cells.len()];
-            for &m in self.candidates.iter().chain(new).flatten() {
-                all[m] = true;
+        let surfaces = (&self.slave, &self.master);
+        let found = anticipated_candidates(
+            mesh,
+            u,
+            surfaces,
+            (CANDIDATE_MARGIN, reach),
+            &self.candidates,
+        );
+        let mut grew = false;
+        for (list, more) in self.candidates.iter_mut().zip(found) {
+            for m in more {
+                if !list.contains(&m) {
+                    list.push(m);
+                    grew = true;
+                }
             }
-            all.iter().filter(|&&c| c).count()
-        };
-        let (slave, master) = (&self.slave, &self.master);
-        let at_u = pattern_candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, 0.0);
-        let at_u = beyond(at_u);
-        let within =
-            pattern_candidates_within(mesh, Some(u), slave, master, CANDIDATE_MARGIN, reach);
-        let within = beyond(within);
-        let new = if cells(&within) <= 2 * cells(&at_u) {
-            within
-        } else {
-            at_u
-        };
-        if new.iter().all(Vec::is_empty) {
-            return;
         }
-        for (list, more) in self.candidates.iter_mut().zip(new) {
-            list.extend(more);
+        if grew {
+            self.candidates_generation += 1;
         }
-        self.candidates_generation += 1;
     }
 
     /// Geometry of point i at displacement u: projected again on its paired master cell
