@@ -10,6 +10,7 @@
 //! | `mod.rs` | the constrained ordering and `SaddleLdlt` |
 //! | `ordered.rs` | `OrderedLdlt`: analysis, factorisation, solves; AMD orders |
 //! | `ordered/passes.rs` | the supernodal passes (L⁻¹, L⁻ᵀ), subtrees on both cores |
+//! | `ordered/numeric.rs` | the numeric factorisation, subtrees on both cores |
 
 mod ordered;
 

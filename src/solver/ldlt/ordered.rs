@@ -16,6 +16,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
+mod numeric;
 mod passes;
 
 /// LDLᵀ without pivoting of P A Pᵀ for a fixed pattern of A and a fixed ordering. The
@@ -38,6 +39,9 @@ pub struct OrderedLdlt {
     solve_scratch: MemBuffer,
     /// The supernodes' subtrees passed in parallel (`passes.rs`).
     split: passes::Split,
+    /// The supernodes' tree, for the factorisation by subtrees on both cores (`numeric.rs`;
+    /// None: faer's, in sequence).
+    tree: Option<numeric::Tree>,
     /// The numeric factorisation uses faer's parallel kernels (see `factor_in_parallel`).
     par: Par,
 }
@@ -208,9 +212,13 @@ impl OrderedLdlt {
             scratch,
             solve_scratch,
             split: passes::Split::default(),
+            tree: None,
             par: Par::Seq,
         };
         ldlt.split = ldlt.split_of();
+        if !ldlt.split.is_empty() {
+            ldlt.tree = ldlt.tree_of();
+        }
         Ok(ldlt)
     }
 
@@ -224,6 +232,11 @@ impl OrderedLdlt {
                 let row = self.fwd[permuted.row_idx()[q]];
                 self.permuted_values[q] = value(self.origin[q], row, self.fwd[j]);
             }
+        }
+        if let Some(tree) = self.tree.take() {
+            let result = self.factor_by_tree(&tree);
+            self.tree = Some(tree);
+            return result;
         }
         self.symbolic
             .factorize_numeric_ldlt(

@@ -32,8 +32,8 @@ const MIN_PARALLEL_ENTRIES: usize = 1 << 20;
 /// One subtree: its supernodes `first..last` and columns `lo..hi`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Subtree {
-    first: usize,
-    last: usize,
+    pub(super) first: usize,
+    pub(super) last: usize,
     lo: usize,
     hi: usize,
 }
@@ -42,10 +42,15 @@ pub(super) struct Subtree {
 /// the top part.
 #[derive(Default)]
 pub(super) struct Split {
-    subtrees: Vec<Subtree>,
+    pub(super) subtrees: Vec<Subtree>,
 }
 
 impl Split {
+    /// No subtrees: the passes (and the factorisation) run in sequence.
+    pub(super) fn is_empty(&self) -> bool {
+        self.subtrees.is_empty()
+    }
+
     /// From the supernodes' column ranges (`begin[s]..end[s]`, increasing), their rows
     /// below the diagonal block (`rows(s)`) and their numbers of entries.
     pub(super) fn new<'r>(
@@ -309,7 +314,7 @@ fn pieces<'a>(y: &'a mut [f64], subtrees: &[Subtree]) -> Vec<&'a mut [f64]> {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::super::{leading_order, OrderedLdlt};
     use super::{Split, Subtree};
     use crate::assembly::matrix::SparseMatrix;
@@ -384,7 +389,7 @@ mod tests {
     }
 
     /// A 5-point Laplacian on an m × m grid plus a shift (symmetric positive definite).
-    fn grid(m: usize) -> SparseMatrix {
+    pub(in crate::solver::ldlt) fn grid(m: usize) -> SparseMatrix {
         let mut entries = vec![];
         let id = |i: usize, j: usize| i * m + j;
         for i in 0..m {
@@ -404,7 +409,7 @@ mod tests {
     }
 
     /// max |A x − b|.
-    fn residual(a: &SparseMatrix, x: &[f64], b: &[f64]) -> f64 {
+    pub(in crate::solver::ldlt) fn residual(a: &SparseMatrix, x: &[f64], b: &[f64]) -> f64 {
         let mut ax = vec![0.0; a.n];
         a.mul_vec(x, &mut ax);
         ax.iter()
