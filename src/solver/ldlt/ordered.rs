@@ -46,6 +46,14 @@ pub struct OrderedLdlt {
     par: Par,
 }
 
+/// The error of a factorisation that met a zero pivot (`e` names its position).
+fn singular(e: impl std::fmt::Debug) -> Error {
+    Error::solve(format!(
+        "the system matrix is singular ({e:?}): a body may be free (not held by supports or \
+         contact)"
+    ))
+}
+
 /// AMD on the graph whose vertex j has the sorted neighbours `idx[ptr[j]..ptr[j + 1]]`
 /// (itself included). Unknowns with the same adjacency (the two dofs of a node) are
 /// ordered together: AMD runs on the graph of these groups, about four times smaller.
@@ -248,12 +256,7 @@ impl OrderedLdlt {
                 MemStack::new(&mut self.scratch),
                 Default::default(),
             )
-            .map_err(|e| {
-                Error::solve(format!(
-                    "the system matrix is singular ({e:?}): a body may be free (not held by supports or \
-                     contact)"
-                ))
-            })?;
+            .map_err(singular)?;
         Ok(())
     }
 

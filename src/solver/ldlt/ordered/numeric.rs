@@ -18,10 +18,12 @@
 //! The result is faer's up to the rounding of the updates' sums; it is the same in every
 //! run (each entry's updates are subtracted in one order).
 
-use super::OrderedLdlt;
-use crate::error::{Error, Result};
+use super::{singular, OrderedLdlt};
+use crate::error::Result;
 use faer::dyn_stack::{MemBuffer, MemStack};
-use faer::linalg::cholesky::ldlt::factor::{cholesky_in_place, cholesky_in_place_scratch};
+use faer::linalg::cholesky::ldlt::factor::{
+    cholesky_in_place, cholesky_in_place_scratch, LdltError,
+};
 use faer::linalg::matmul::matmul;
 use faer::linalg::triangular_solve::solve_unit_lower_triangular_in_place;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
@@ -422,11 +424,11 @@ fn factor_node(
         MemStack::new(&mut work.stack),
         Default::default(),
     )
-    .map_err(|e| {
-        Error::solve(format!(
-            "the system matrix is singular ({e:?}): a body may be free (not held by supports or \
-             contact)"
-        ))
+    // (the pivot's position in the whole factor, as faer's factorisation names it)
+    .map_err(|LdltError::ZeroPivot { index }| {
+        singular(LdltError::ZeroPivot {
+            index: index + s_begin,
+        })
     })?;
     for j in 0..c {
         for i in 0..j {
@@ -522,5 +524,29 @@ mod tests {
             last_width >= super::WIDE,
             "the last supernode's width {last_width}"
         );
+    }
+
+    /// A zero pivot (an unknown whose row and column are zero) is named by its position in
+    /// the factorised order, as faer's factorisation names it.
+    #[test]
+    fn a_zero_pivot_is_named_where_faer_names_it() {
+        let a = grid(300);
+        let mut f = OrderedLdlt::new(&a, leading_order(&a, a.n).unwrap()).unwrap();
+        assert!(f.tree.is_some());
+        let zero = f.order()[a.n / 2];
+        let value = |p: usize| {
+            let c = a.col_ptr.partition_point(|&q| q <= p) - 1;
+            if c == zero || a.row_idx[p] == zero {
+                0.0
+            } else {
+                a.values[p]
+            }
+        };
+        let values: Vec<f64> = (0..a.values.len()).map(value).collect();
+        let by_tree = f.factor_with(|p, _, _| values[p]).unwrap_err().to_string();
+        f.tree = None;
+        let by_faer = f.factor_with(|p, _, _| values[p]).unwrap_err().to_string();
+        assert_eq!(by_tree, by_faer);
+        assert!(by_tree.contains("ZeroPivot"), "{by_tree}");
     }
 }
