@@ -11,6 +11,7 @@
 //! | `ordered.rs` | `OrderedLdlt`: analysis, factorisation, solves; AMD orders |
 //! | `ordered/passes.rs` | the supernodal passes (L⁻¹, L⁻ᵀ), subtrees on both cores |
 //! | `ordered/numeric.rs` | the numeric factorisation, subtrees on both cores |
+//! | `ordered/forest.rs` | the supernodes' elimination tree both are cut along |
 
 mod ordered;
 

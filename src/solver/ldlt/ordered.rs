@@ -16,6 +16,7 @@ use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, Mat, MatMut, Par, Side};
 
+mod forest;
 mod numeric;
 mod passes;
 

@@ -18,6 +18,7 @@
 //! The result is faer's up to the rounding of the updates' sums; it is the same in every
 //! run (each entry's updates are subtracted in one order).
 
+use super::forest::Forest;
 use super::{singular, OrderedLdlt};
 use crate::error::Result;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -33,14 +34,9 @@ use rayon::prelude::*;
 /// The elimination tree of the supernodes, in postorder (each subtree a contiguous range
 /// of supernodes, its root last), and each supernode's updates: the supernodes with rows
 /// in its columns (its descendants), ascending, `updates[ptr[s]..ptr[s + 1]]`.
-#[derive(Default)]
 pub(super) struct Tree {
-    /// Each supernode's children (ascending), and the roots.
-    children: Vec<Vec<usize>>,
+    forest: Forest,
     roots: Vec<usize>,
-    /// The first supernode of each subtree, and its factor entries.
-    first: Vec<usize>,
-    work: Vec<usize>,
     ptr: Vec<usize>,
     updates: Vec<usize>,
 }
@@ -102,51 +98,29 @@ impl OrderedLdlt {
     pub(super) fn tree_of(&self) -> Option<Tree> {
         let st = self.structure();
         let ns = st.begin.len();
-        let n = st.end.last().copied().unwrap_or(0);
-        let mut node_of = vec![0; n];
-        for s in 0..ns {
-            node_of[st.begin[s]..st.end[s]].fill(s);
+        let entries: Vec<usize> = (0..ns).map(|s| st.val_ptr[s + 1] - st.val_ptr[s]).collect();
+        let forest = Forest::new(st.begin, st.end, |s| st.pattern(s), &entries);
+        if !(0..ns).all(|s| forest.contiguous(s)) {
+            return None;
         }
         let mut lists: Vec<Vec<usize>> = vec![vec![]; ns];
-        let mut children: Vec<Vec<usize>> = vec![vec![]; ns];
-        let mut roots = vec![];
-        let mut first: Vec<usize> = (0..ns).collect();
-        let mut work: Vec<usize> = (0..ns).map(|s| st.val_ptr[s + 1] - st.val_ptr[s]).collect();
-        let mut size = vec![1usize; ns];
         for d in 0..ns {
             let mut last = usize::MAX;
             for &r in st.pattern(d) {
-                let s = node_of[r];
+                let s = forest.node_of[r];
                 if s != last {
                     lists[s].push(d);
                     last = s;
                 }
             }
-            // the parent: the supernode of the first row below the diagonal block
-            match st.pattern(d).first() {
-                Some(&r) => {
-                    let p = node_of[r];
-                    children[p].push(d);
-                    first[p] = first[p].min(first[d]);
-                    work[p] += work[d];
-                    size[p] += size[d];
-                }
-                None => roots.push(d),
-            }
-        }
-        // postorder: each subtree's supernodes are those from its first on
-        if (0..ns).any(|s| s + 1 - first[s] != size[s]) {
-            return None;
         }
         let mut ptr = vec![0];
         for l in &lists {
             ptr.push(ptr.last().unwrap() + l.len());
         }
         Some(Tree {
-            children,
-            roots,
-            first,
-            work,
+            roots: (0..ns).filter(|&s| forest.parent[s].is_none()).collect(),
+            forest,
             ptr,
             updates: lists.concat(),
         })
@@ -213,7 +187,7 @@ impl Factor<'_> {
         let mut pieces = Vec::with_capacity(roots.len());
         let mut rest = values;
         for &r in roots {
-            let len = st.val_ptr[r + 1] - st.val_ptr[tree.first[r]];
+            let len = st.val_ptr[r + 1] - st.val_ptr[tree.forest.first[r]];
             let (piece, tail) = rest.split_at_mut(len);
             pieces.push((r, piece));
             rest = tail;
@@ -227,14 +201,14 @@ impl Factor<'_> {
     /// The subtree of `r`, its factor in `values` (from its first supernode's on).
     fn subtree(&self, r: usize, values: &mut [f64]) -> Result<()> {
         let (st, tree) = (self.st, self.tree);
-        let offset = st.val_ptr[tree.first[r]];
-        if tree.work[r] <= self.grain {
+        let offset = st.val_ptr[tree.forest.first[r]];
+        if tree.forest.work[r] <= self.grain {
             let mut work = Work::new(self.widest, Par::Seq);
-            return (tree.first[r]..=r).try_for_each(|s| {
+            return (tree.forest.first[r]..=r).try_for_each(|s| {
                 factor_node(st, tree, self.a, values, offset, s, &mut work, Par::Seq)
             });
         }
-        let children = &tree.children[r];
+        let children = &tree.forest.children[r];
         if !children.is_empty() {
             let below = st.val_ptr[r] - offset;
             self.forest(children, &mut values[..below])?;

@@ -17,6 +17,7 @@
 //! - backward: the top supernodes run first (in reverse; their rows are top rows), then the
 //!   subtrees in parallel, each reading its own values and the top's final ones.
 
+use super::forest::Forest;
 use super::{dot, OrderedLdlt};
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 use rayon::prelude::*;
@@ -32,8 +33,8 @@ const MIN_PARALLEL_ENTRIES: usize = 1 << 20;
 /// One subtree: its supernodes `first..last` and columns `lo..hi`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) struct Subtree {
-    pub(super) first: usize,
-    pub(super) last: usize,
+    first: usize,
+    last: usize,
     lo: usize,
     hi: usize,
 }
@@ -42,7 +43,7 @@ pub(super) struct Subtree {
 /// the top part.
 #[derive(Default)]
 pub(super) struct Split {
-    pub(super) subtrees: Vec<Subtree>,
+    subtrees: Vec<Subtree>,
 }
 
 impl Split {
@@ -64,31 +65,16 @@ impl Split {
         if ns < 2 || total < MIN_PARALLEL_ENTRIES {
             return Split::default();
         }
-        // the supernode of each column, then each supernode's parent (that of its first row
-        // below the diagonal block)
-        let n = end[ns - 1];
-        let mut node_of = vec![0; n];
-        for s in 0..ns {
-            node_of[begin[s]..end[s]].fill(s);
-        }
-        let parent: Vec<Option<usize>> = (0..ns)
-            .map(|s| rows(s).iter().min().map(|&r| node_of[r]))
-            .collect();
-        // subtree entries, size and first supernode (children come before their parent)
-        let mut work = entries.to_vec();
-        let mut size = vec![1usize; ns];
-        let mut first = (0..ns).collect::<Vec<_>>();
-        let mut children = vec![vec![]; ns];
-        for s in 0..ns {
-            if let Some(p) = parent[s] {
-                debug_assert!(p > s, "a supernode's parent comes after it");
-                work[p] += work[s];
-                size[p] += size[s];
-                first[p] = first[p].min(first[s]);
-                children[p].push(s);
-            }
-        }
-        let contiguous = |s: usize| s + 1 - first[s] == size[s];
+        let tree = Forest::new(begin, end, &rows, entries);
+        let Forest {
+            node_of,
+            parent,
+            children,
+            first,
+            work,
+            ..
+        } = &tree;
+        let contiguous = |s: usize| tree.contiguous(s);
         let limit = total / PIECES;
         let mut heap: BinaryHeap<(usize, usize)> = (0..ns)
             .filter(|&s| parent[s].is_none())
