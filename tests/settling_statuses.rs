@@ -1,0 +1,69 @@
+//! A point whose residual already meets the tolerance but whose contact statuses changed
+//! needs one more correction to confirm them; without friction that correction keeps the
+//! bodies' factorisations (contact terms current) and still lands far below the tolerance
+//! (`iterations.rs`, `settling`). SSNP154 A with mortar on the built-in mesh of contact
+//! cell 1.5 · 2^-5 mm (98k unknowns, the scale bench's row 10): the first load step reaches
+//! 8.6e-7 with one status changed.
+
+use tribo::case::{self, ssnp154};
+use tribo::mesh::generate::{ssnp154 as generate, Ssnp154Options};
+
+#[test]
+fn a_converged_residual_with_changed_statuses_is_confirmed_without_factorising_the_bodies() {
+    let size = 1.5 * 0.5f64.powi(5);
+    let mesh = generate(&Ssnp154Options {
+        quadratic: false,
+        size,
+        global_refine: 0,
+    })
+    .unwrap();
+    let c = ssnp154::contact_case("A", ssnp154::builtin_mesh(false, size), Some("mortar"));
+    let out = case::run_keeping(&c, &mesh, false).unwrap_or_else(|f| panic!("{}", f.error));
+    let tolerance = 1e-6;
+    let mut settled = 0;
+    for step in &out.report.steps {
+        assert!(step.converged);
+        let its = &step.iterations;
+        for (k, it) in its.iter().enumerate().skip(1) {
+            let before = &its[k - 1];
+            // a Newton point (not a re-solve) met the tolerance, but the update before it
+            // changed statuses, without friction: the confirming correction is frozen
+            if it.active_set_resolve
+                || it.linear_kinematics
+                || before.status_changes == 0
+                || it.relative_residual > tolerance
+            {
+                continue;
+            }
+            assert!(
+                it.frozen_bodies,
+                "iteration {k}: residual {:.1e} after {} status changes, not frozen",
+                it.relative_residual, before.status_changes
+            );
+            // the next point: converged, about the tolerance squared (a full correction
+            // gave 9e-14 here; a chord-like frozen one lands near r · 1e-3 or below)
+            let next = its
+                .get(k + 1)
+                .expect("a point after the confirming correction");
+            assert!(
+                next.relative_residual < 1e-3 * it.relative_residual,
+                "iteration {}: {:.1e} after a frozen confirmation from {:.1e}",
+                k + 1,
+                next.relative_residual,
+                it.relative_residual
+            );
+            settled += 1;
+        }
+    }
+    // (the case exists on this mesh: the check above is not vacuous)
+    assert!(settled >= 1, "no converged point with changed statuses");
+    // the answer: at this size the mesh's error is below the validation's tolerance,
+    // against the reference values of the quadratic mesh (SSNP154 B, the finer answer)
+    let p = |n: &str| out.probes.iter().find(|q| q.0 == n).unwrap().1;
+    let (dy, siyy) = (p("DY_B"), p("SIYY_B"));
+    assert!((dy / -1.3080192481252 - 1.0).abs() < 0.01, "DY_B {dy}");
+    assert!(
+        (siyy / -3513.3741602327 - 1.0).abs() < 0.01,
+        "SIYY_B {siyy}"
+    );
+}
