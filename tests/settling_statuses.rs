@@ -1,9 +1,10 @@
-//! A point whose residual already meets the tolerance but whose contact statuses changed
-//! needs one more correction to confirm them; without friction that correction keeps the
-//! bodies' factorisations (contact terms current) and still lands far below the tolerance
-//! (`iterations.rs`, `settling`). SSNP154 A with mortar on the built-in mesh of contact
-//! cell 1.5 · 2^-5 mm (98k unknowns, the scale bench's row 10): the first load step reaches
-//! 8.6e-7 with one status changed.
+//! Contact statuses settled where it costs the interface alone, not a factorisation of the
+//! bodies (`iterations.rs`), on SSNP154 A with mortar (no friction, large kinematics):
+//! - a point whose residual already meets the tolerance but whose statuses changed is
+//!   confirmed by a correction that keeps the bodies' factorisations (`settling`): at
+//!   98k unknowns the first load step reaches 8.6e-7 with one status changed;
+//! - the statuses on the linearised constraints are re-solved at every Newton point, not
+//!   at a step's first alone (27k unknowns).
 
 use tribo::case::{self, ssnp154};
 use tribo::mesh::generate::{ssnp154 as generate, Ssnp154Options};
@@ -59,6 +60,47 @@ fn a_converged_residual_with_changed_statuses_is_confirmed_without_factorising_t
     assert!(settled >= 1, "no converged point with changed statuses");
     // the answer: at this size the mesh's error is below the validation's tolerance,
     // against the reference values of the quadratic mesh (SSNP154 B, the finer answer)
+    let p = |n: &str| out.probes.iter().find(|q| q.0 == n).unwrap().1;
+    let (dy, siyy) = (p("DY_B"), p("SIYY_B"));
+    assert!((dy / -1.3080192481252 - 1.0).abs() < 0.01, "DY_B {dy}");
+    assert!(
+        (siyy / -3513.3741602327 - 1.0).abs() < 0.01,
+        "SIYY_B {siyy}"
+    );
+}
+
+/// Without friction, mortar's statuses on the linearised constraints are re-solved at every
+/// Newton point where a re-solve costs the interface alone, not at a step's first point
+/// only: the contact zone's edge then closes in re-solves (`iterations.rs`). SSNP154 A with
+/// mortar on the built-in mesh of contact cell 1.5 · 2^-3.5 mm (27k unknowns).
+#[test]
+fn without_friction_the_zone_edge_closes_in_linearised_re_solves_at_later_points() {
+    let size = 1.5 * 0.5f64.powf(3.5);
+    let mesh = generate(&Ssnp154Options {
+        quadratic: false,
+        size,
+        global_refine: 0,
+    })
+    .unwrap();
+    let c = ssnp154::contact_case("A", ssnp154::builtin_mesh(false, size), Some("mortar"));
+    let out = case::run_keeping(&c, &mesh, false).unwrap_or_else(|f| panic!("{}", f.error));
+    let mut later = 0;
+    for step in &out.report.steps {
+        assert!(step.converged);
+        // the Newton points (not re-solves, not the linear stage) seen so far in the step
+        let mut points = 0;
+        for it in step.iterations.iter().filter(|i| !i.linear_kinematics) {
+            if it.active_set_resolve {
+                later += usize::from(points > 1);
+            } else {
+                points += 1;
+            }
+        }
+    }
+    assert!(
+        later >= 1,
+        "no linearised re-solve after a step's first point"
+    );
     let p = |n: &str| out.probes.iter().find(|q| q.0 == n).unwrap().1;
     let (dy, siyy) = (p("DY_B"), p("SIYY_B"));
     assert!((dy / -1.3080192481252 - 1.0).abs() < 0.01, "DY_B {dy}");
