@@ -233,15 +233,14 @@ pub(super) fn iterate_step(
             .count();
         let stalled =
             frozen_run >= FROZEN_STALL && !merits.shrinks(norms.relative(), FROZEN_STALL, 0.5);
-        let mut frozen = frozen_candidate
+        // (settling excludes a frozen candidate: one or the other decides)
+        let mut frozen = (frozen_candidate
             && below
             && !raised
             && !stalled
             && !met
-            && (branches_switched || norms.relative() > FROZEN_FINISH * settings.tolerance);
-        if settling {
-            frozen = met;
-        }
+            && (branches_switched || norms.relative() > FROZEN_FINISH * settings.tolerance))
+            || (settling && met);
         if (frozen_candidate || settling) && !frozen && !met {
             norms = problem.evaluate(x, lambda, r, true)?;
         }
