@@ -161,6 +161,17 @@ impl LinearSolver {
         matches!(self.ldlt, Some(Factorisation::Interface(_))) && !self.lu_fallback
     }
 
+    /// Where tangents are condensed on the contact interface: how many solves one
+    /// factorisation of the bodies costs (`InterfaceSolver::solves_per_factorisation`).
+    pub fn solves_per_factorisation(&self) -> Option<f64> {
+        match &self.ldlt {
+            Some(Factorisation::Interface(s)) if self.condenses_contact() => {
+                Some(s.solves_per_factorisation())
+            }
+            _ => None,
+        }
+    }
+
     /// Numeric factorisation of `a`, reusing the symbolic one when the pattern is unchanged.
     pub fn factor(&mut self, a: &SparseMatrix) -> Result<()> {
         self.stalled = false;

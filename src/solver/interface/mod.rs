@@ -389,6 +389,15 @@ impl InterfaceSolver {
         self
     }
 
+    /// How many solves one factorisation of the bodies costs, counted in multiply-adds
+    /// (a solve's: forward and backward passes, about two per stored factor entry). A pure
+    /// number of the mesh: it grows as the factor's fronts do, about as √n in 2D.
+    pub fn solves_per_factorisation(&self) -> f64 {
+        let flops: f64 = self.blocks.iter().map(|b| b.ldlt.factor_flops()).sum();
+        let entries: usize = self.blocks.iter().map(|b| b.ldlt.entries()).sum();
+        flops / (2 * entries).max(1) as f64
+    }
+
     /// Its large buffers, for the next analysis.
     pub fn into_storage(self) -> Storage {
         Storage {

@@ -283,6 +283,19 @@ impl OrderedLdlt {
         self.values.len()
     }
 
+    /// Multiply-adds of one numeric factorisation: over the columns, the square of the
+    /// number of entries below the diagonal (a solve's are twice the entries).
+    pub fn factor_flops(&self) -> f64 {
+        self.supernodes()
+            .map(|(begin, end, rows, _)| {
+                let (c, r) = (end - begin, rows.len());
+                (0..c)
+                    .map(|j| ((c - 1 - j + r) as f64).powi(2))
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+
     /// The storage of the factor's values, for a later analysis (`with_storage`).
     pub fn into_storage(self) -> Vec<f64> {
         self.values

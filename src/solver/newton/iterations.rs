@@ -22,6 +22,16 @@ const FROZEN_FINISH: f64 = 1e2;
 /// residual to go on (see `stalled` below).
 const FROZEN_STALL: usize = 8;
 
+/// Without friction, later points take frozen-body corrections as friction's do only where
+/// one factorisation of the bodies costs at least this many solves (in multiply-adds:
+/// `LinearSolver::solves_per_factorisation`, about √n in 2D). A frozen correction
+/// converges linearly (rate ~0.05–0.1) where a full one converges quadratically, so it
+/// may cost an iteration more: that pays only where the factorisation it saves is large.
+/// SSNP154 A node-to-segment / point-to-segment, paired runs: at 27k–31k unknowns (77–80
+/// solves per factorisation) 1.03–1.07× the time, at 89k–98k (153–162) 0.87–0.94×, at
+/// 320k (264) 0.54× and 0.63×; the reference meshes are at 29–54 (their runs unchanged).
+const FROZEN_WITHOUT_FRICTION_SOLVES: f64 = 120.0;
+
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
 /// Re-solves on the linearised constraints in a row from one linearisation point (the
@@ -172,12 +182,20 @@ pub(super) fn iterate_step(
         // if this point is below it (judged by the last point alone, a frozen correction
         // that swung the residual up through status changes was followed by full ones:
         // SSNP154 D node-to-segment at 960k unknowns, two in the first step, 8 s each).
+        // Without friction, the same where a factorisation of the bodies is costly (see
+        // FROZEN_WITHOUT_FRICTION_SOLVES), not where the point is likely converged (its
+        // residual alone is checked first, then a chord step may serve).
         let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
+        let later_frozen = backtracking
+            || (!likely_converged
+                && lin
+                    .solves_per_factorisation()
+                    .is_some_and(|s| s >= FROZEN_WITHOUT_FRICTION_SOLVES));
         let frozen_candidate = settings.frozen_bodies
             && !resolve
             && lin.condenses_contact()
             && ((it == 0 && last_converged)
-                || (backtracking && (last_frozen || prev.is_some_and(|p| p < FROZEN_BELOW))));
+                || (later_frozen && (last_frozen || prev.is_some_and(|p| p < FROZEN_BELOW))));
         // Statuses that changed at a point near convergence, without friction (no
         // re-solve took them: mortar, or re-solves spent): the residual with them may
         // already meet the tolerance, and then one more correction only confirms them.
@@ -190,7 +208,6 @@ pub(super) fn iterate_step(
         let settling = settings.frozen_bodies
             && !resolve
             && !backtracking
-            && !frozen_candidate
             && lin.condenses_contact()
             && changes > 0
             && changes != usize::MAX
@@ -233,7 +250,7 @@ pub(super) fn iterate_step(
             .count();
         let stalled =
             frozen_run >= FROZEN_STALL && !merits.shrinks(norms.relative(), FROZEN_STALL, 0.5);
-        // (settling excludes a frozen candidate: one or the other decides)
+        // (a frozen candidate below the tolerance is one no more; settling applies there)
         let mut frozen = (frozen_candidate
             && below
             && !raised

@@ -463,6 +463,24 @@ mod tests {
         st.end[last] - st.begin[last]
     }
 
+    /// A factorisation's multiply-adds, counted on a dense matrix (one supernode, no
+    /// relaxation): column j has n − 1 − j entries below its pivot, Σ (n − 1 − j)² =
+    /// (n − 1) n (2n − 1) / 6; the factor stores its supernode's diagonal block whole.
+    #[test]
+    fn a_dense_factorisation_counts_its_multiply_adds() {
+        let n = 40;
+        let mut entries = vec![];
+        for i in 0..n {
+            for j in 0..n {
+                entries.push((i, j, if i == j { n as f64 } else { 0.5 }));
+            }
+        }
+        let a = SparseMatrix::from_entries(n, &entries);
+        let f = OrderedLdlt::new(&a, (0..n).collect()).unwrap();
+        assert_eq!(f.entries(), n * n);
+        assert_eq!(f.factor_flops(), ((n - 1) * n * (2 * n - 1) / 6) as f64);
+    }
+
     #[test]
     fn the_factorisation_by_the_tree_is_faers_up_to_rounding() {
         let a = grid(300);

@@ -1,0 +1,68 @@
+//! Frozen-body corrections without friction where a factorisation of the bodies is costly
+//! (`iterations.rs`, FROZEN_WITHOUT_FRICTION_SOLVES): later Newton points keep the bodies'
+//! factorisations (contact terms current) once the residual is below 0.1, as with
+//! friction; on small models every correction after a step's first stays a full Newton
+//! one (they converge quadratically, and a factorisation costs little there).
+
+use tribo::case::{self, ssnp154, Outcome};
+use tribo::mesh::generate::{ssnp154 as generate, Ssnp154Options};
+
+/// SSNP154 A with point-to-segment (frictionless, large kinematics) on the built-in linear
+/// mesh of contact cell `size` (mm); every load step converged, and the answer within the
+/// validation's tolerance (1 %) of the quadratic mesh's reference values (SSNP154 B).
+fn a_point_to_segment(size: f64) -> Outcome {
+    let mesh = generate(&Ssnp154Options {
+        quadratic: false,
+        size,
+        global_refine: 0,
+    })
+    .unwrap();
+    let spec = ssnp154::builtin_mesh(false, size);
+    let c = ssnp154::contact_case("A", spec, Some("point-to-segment"));
+    let out = case::run_keeping(&c, &mesh, false).unwrap_or_else(|f| panic!("{}", f.error));
+    assert!(out.report.steps.iter().all(|s| s.converged));
+    let p = |n: &str| out.probes.iter().find(|q| q.0 == n).unwrap().1;
+    let (dy, siyy) = (p("DY_B"), p("SIYY_B"));
+    assert!((dy / -1.3080192481252 - 1.0).abs() < 0.01, "DY_B {dy}");
+    assert!(
+        (siyy / -3513.3741602327 - 1.0).abs() < 0.01,
+        "SIYY_B {siyy}"
+    );
+    out
+}
+
+/// The frozen-body corrections at Newton points after a step's first (re-solves and the
+/// linear stage left out), with their iteration numbers.
+fn later_frozen_points(out: &Outcome) -> Vec<(f64, usize)> {
+    let mut found = vec![];
+    for step in &out.report.steps {
+        let points = step
+            .iterations
+            .iter()
+            .filter(|i| !i.active_set_resolve && !i.linear_kinematics);
+        for it in points.skip(1).filter(|i| i.frozen_bodies) {
+            found.push((step.time, it.iteration));
+        }
+    }
+    found
+}
+
+/// 98k unknowns (a factorisation of the bodies costs about 150 solves): the second load
+/// step's points below 0.1 keep the bodies' factorisations.
+#[test]
+fn a_large_frictionless_model_keeps_the_bodies_factorisations_at_later_points() {
+    let out = a_point_to_segment(1.5 * 0.5f64.powi(5));
+    let frozen = later_frozen_points(&out);
+    assert!(
+        !frozen.is_empty(),
+        "no frozen correction after a step's first point"
+    );
+}
+
+/// 27k unknowns (about 80 solves): every later point factorises the bodies.
+#[test]
+fn a_smaller_frictionless_model_takes_full_corrections_at_later_points() {
+    let out = a_point_to_segment(1.5 * 0.5f64.powf(3.5));
+    let frozen = later_frozen_points(&out);
+    assert!(frozen.is_empty(), "frozen corrections at {frozen:?}");
+}
