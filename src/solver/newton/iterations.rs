@@ -7,30 +7,10 @@ use super::super::line_search;
 use super::super::linear::LinearSolver;
 use super::super::problem::Norms;
 use super::diagnosis::diagnosis;
+use super::frozen::{frozen_stalled, later_points_may_freeze, FROZEN_BELOW, FROZEN_FINISH};
 use super::step_start::rest_solution;
 use super::{Iteration, NewtonReport, NewtonSettings, Nonlinear, StepReport};
 use crate::error::{Error, Result};
-
-/// Frozen-body corrections: only from a residual below FROZEN_BELOW (that of the last point,
-/// or after a frozen correction this point's; or at a step's start), not once the residual
-/// is within FROZEN_FINISH times the tolerance (the last corrections are full Newton ones,
-/// so friction's constraint rows converge as far below the tolerance as they do without),
-/// unless friction branches still switch (see `frozen` below).
-const FROZEN_BELOW: f64 = 0.1;
-const FROZEN_FINISH: f64 = 1e2;
-/// Frozen-body corrections in a row after which they must have halved the step's best
-/// residual to go on (see `stalled` below).
-const FROZEN_STALL: usize = 8;
-
-/// Without friction, later points take frozen-body corrections as friction's do only where
-/// one factorisation of the bodies costs at least this many solves (in multiply-adds:
-/// `LinearSolver::solves_per_factorisation`, about √n in 2D). A frozen correction
-/// converges linearly (rate ~0.05–0.1) where a full one converges quadratically, so it
-/// may cost an iteration more: that pays only where the factorisation it saves is large.
-/// SSNP154 A node-to-segment / point-to-segment, paired runs: at 27k–31k unknowns (77–80
-/// solves per factorisation) 1.03–1.07× the time, at 89k–98k (153–162) 0.87–0.94×, at
-/// 320k (264) 0.54× and 0.63×; the reference meshes are at 29–54 (their runs unchanged).
-const FROZEN_WITHOUT_FRICTION_SOLVES: f64 = 120.0;
 
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
@@ -182,15 +162,10 @@ pub(super) fn iterate_step(
         // if this point is below it (judged by the last point alone, a frozen correction
         // that swung the residual up through status changes was followed by full ones:
         // SSNP154 D node-to-segment at 960k unknowns, two in the first step, 8 s each).
-        // Without friction, the same where a factorisation of the bodies is costly (see
-        // FROZEN_WITHOUT_FRICTION_SOLVES), not where the point is likely converged (its
-        // residual alone is checked first, then a chord step may serve).
+        // Without friction, the same where a factorisation of the bodies is costly
+        // (`frozen.rs`).
         let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
-        let later_frozen = backtracking
-            || (!likely_converged
-                && lin
-                    .solves_per_factorisation()
-                    .is_some_and(|s| s >= FROZEN_WITHOUT_FRICTION_SOLVES));
+        let later_frozen = later_points_may_freeze(backtracking, likely_converged, lin);
         let frozen_candidate = settings.frozen_bodies
             && !resolve
             && lin.condenses_contact()
@@ -233,23 +208,7 @@ pub(super) fn iterate_step(
         let below = (it == 0 && last_converged)
             || prev.is_some_and(|p| p < FROZEN_BELOW)
             || (last_frozen && norms.relative() < FROZEN_BELOW);
-        // Frozen corrections converge linearly at best; while statuses or friction
-        // branches change they are kept whatever the residual does, and they may then
-        // swing between two points for good (SSNP154 D at 960k unknowns on another Newton
-        // path: 40 frozen corrections between 3.10e-3 and 3.24e-3, the step cut at 50
-        // iterations). After FROZEN_STALL of them in a row that have not halved the best
-        // residual, the next correction is a full one. (Settling statuses make frozen
-        // corrections rise and fall: D's second step at 960k, 1.7e-2 → 2.5e-2 → 6.3e-3
-        // over six, and on to the tolerance; four in a row would have cut that short.)
-        let frozen_run = step
-            .iterations
-            .iter()
-            .rev()
-            .filter(|i| !i.active_set_resolve)
-            .take_while(|i| i.frozen_bodies)
-            .count();
-        let stalled =
-            frozen_run >= FROZEN_STALL && !merits.shrinks(norms.relative(), FROZEN_STALL, 0.5);
+        let stalled = frozen_stalled(&step.iterations, &merits, norms.relative());
         // (a frozen candidate below the tolerance is one no more; settling applies there)
         let mut frozen = (frozen_candidate
             && below

@@ -11,9 +11,11 @@
 //! | `settings.rs` | `NewtonSettings` |
 //! | `step_start.rs` | a step's start: candidate starts chosen by their residual, the bodies at rest |
 //! | `iterations.rs` | one step's Newton iterations: shortcuts, line searches, status updates, re-solves |
+//! | `frozen.rs` | frozen-body corrections: their thresholds, and where they pay without friction |
 //! | `diagnosis.rs` | what a failure message adds about an unconverged step |
 
 mod diagnosis;
+mod frozen;
 mod iterations;
 mod settings;
 mod step_start;
