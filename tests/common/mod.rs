@@ -4,6 +4,7 @@
 
 pub mod arctan;
 pub mod patches;
+pub mod ssnp154_a;
 
 use tribo::assembly::dofs::DofMap;
 use tribo::assembly::Assembler;
