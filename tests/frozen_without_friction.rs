@@ -1,5 +1,5 @@
 //! Frozen-body corrections without friction where a factorisation of the bodies is costly
-//! (`iterations.rs`, FROZEN_WITHOUT_FRICTION_SOLVES): later Newton points keep the bodies'
+//! (`newton/frozen.rs`, FROZEN_WITHOUT_FRICTION_SOLVES): later Newton points keep the bodies'
 //! factorisations (contact terms current) once the residual is below 0.1, as with
 //! friction; on small models every correction after a step's first stays a full Newton
 //! one (they converge quadratically, and a factorisation costs little there).

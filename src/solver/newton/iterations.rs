@@ -164,13 +164,15 @@ pub(super) fn iterate_step(
         // SSNP154 D node-to-segment at 960k unknowns, two in the first step, 8 s each).
         // Without friction, the same where a factorisation of the bodies is costly
         // (`frozen.rs`).
+        // (the cost of a factorisation is looked up last: a walk over the factor's
+        // supernodes, needless at re-solves and far from convergence)
         let last_frozen = step.iterations.last().is_some_and(|i| i.frozen_bodies);
-        let later_frozen = later_points_may_freeze(backtracking, likely_converged, lin);
         let frozen_candidate = settings.frozen_bodies
             && !resolve
             && lin.condenses_contact()
             && ((it == 0 && last_converged)
-                || (later_frozen && (last_frozen || prev.is_some_and(|p| p < FROZEN_BELOW))));
+                || ((last_frozen || prev.is_some_and(|p| p < FROZEN_BELOW))
+                    && later_points_may_freeze(backtracking, likely_converged, lin)));
         // Statuses that changed at a point near convergence, without friction (no
         // re-solve took them: mortar, or re-solves spent): the residual with them may
         // already meet the tolerance, and then one more correction only confirms them.
