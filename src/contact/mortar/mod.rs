@@ -273,8 +273,8 @@ impl Mortar {
         m
     }
 
-    /// How far from a slave cell, on the deformed geometry, master cells are sought with
-    /// small kinematics: the largest motion since the step start, rounded up to the smallest
+    /// How far from a slave cell, on the deformed geometry, master cells are sought along
+    /// its normal (large kinematics: inward only): the largest motion since the step start, rounded up to the smallest
     /// slave cell size times a power of two (so that the set changes only when the motion
     /// doubles: a changed set is a status change); 0 below one cell (the margin covers it).
     /// An iterate can carry a body many cells through another on a fine mesh; within one

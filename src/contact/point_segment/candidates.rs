@@ -26,9 +26,14 @@ pub fn candidates_within(
     margin: f64,
     reach: f64,
 ) -> Vec<Vec<usize>> {
-    within(mesh, u, (slave, master), reach, 0.0, |s, m| {
-        margin * s.max(m)
-    })
+    within(
+        mesh,
+        u,
+        (slave, master),
+        reach,
+        Sweep::BothWays(0.0),
+        |s, m| margin * s.max(m),
+    )
 }
 
 /// The master cells whose couplings with each slave cell a matrix pattern reserves: as
@@ -48,9 +53,14 @@ pub fn pattern_candidates_within(
     margin: f64,
     reach: f64,
 ) -> Vec<Vec<usize>> {
-    within(mesh, u, (slave, master), reach, 0.0, |s, m| {
-        margin * s.min(m)
-    })
+    within(
+        mesh,
+        u,
+        (slave, master),
+        reach,
+        Sweep::BothWays(0.0),
+        |s, m| margin * s.min(m),
+    )
 }
 
 /// The pattern candidates to take in at the displacement `u` predicted for the loading's
@@ -99,9 +109,43 @@ pub fn swept_candidates(
     margin: f64,
     sweep: f64,
 ) -> Vec<Vec<usize>> {
-    within(mesh, u, (slave, master), 0.0, sweep, |s, m| {
-        margin * s.max(m)
-    })
+    within(
+        mesh,
+        u,
+        (slave, master),
+        0.0,
+        Sweep::BothWays(sweep),
+        |s, m| margin * s.max(m),
+    )
+}
+
+/// As `swept_candidates`, each slave cell swept `depth` inward only (into its own body):
+/// the master cells it has passed through, however deep, without widening its reach across
+/// an open gap.
+pub fn overlap_candidates(
+    mesh: &Mesh,
+    u: &[f64],
+    slave: &Surface,
+    master: &Surface,
+    margin: f64,
+    depth: f64,
+) -> Vec<Vec<usize>> {
+    within(
+        mesh,
+        Some(u),
+        (slave, master),
+        0.0,
+        Sweep::Inward(depth),
+        |s, m| margin * s.max(m),
+    )
+}
+
+/// How far a slave cell's box is swept along its chord's normal.
+#[derive(Clone, Copy)]
+enum Sweep {
+    BothWays(f64),
+    /// into the slave's body only
+    Inward(f64),
 }
 
 /// The master cells of each slave cell whose bounding boxes, on the geometry displaced by
@@ -112,7 +156,7 @@ fn within(
     u: Option<&[f64]>,
     (slave, master): (&Surface, &Surface),
     reach: f64,
-    sweep: f64,
+    sweep: Sweep,
     margin: impl Fn(f64, f64) -> f64,
 ) -> Vec<Vec<usize>> {
     let at = |n: usize| -> [f64; 2] {
@@ -135,19 +179,32 @@ fn within(
     slave
         .cells
         .iter()
-        .map(|&sc| {
+        .zip(&slave.ccw)
+        .map(|(&sc, &ccw)| {
             let (mut slo, mut shi) = bbox(sc);
             let ssize = (shi[0] - slo[0]).hypot(shi[1] - slo[1]);
             let nodes = mesh.cell_nodes(sc);
             let (a, b) = (at(nodes[0]), at(nodes[1]));
             let chord = (b[0] - a[0]).hypot(b[1] - a[1]);
-            if sweep > 0.0 && chord > 0.0 {
-                // (the box of the cell moved ± sweep n: its own, grown by |sweep n|)
-                let s = [(a[1] - b[1]) / chord * sweep, (b[0] - a[0]) / chord * sweep];
-                for d in 0..2 {
-                    slo[d] -= s[d].abs();
-                    shi[d] += s[d].abs();
+            // (the chord's left-hand unit normal: inward where the cell runs
+            // counter-clockwise round its body)
+            let left = [(a[1] - b[1]) / chord, (b[0] - a[0]) / chord];
+            match sweep {
+                Sweep::BothWays(sweep) if sweep > 0.0 && chord > 0.0 => {
+                    // (the box of the cell moved ± sweep n: its own, grown by |sweep n|)
+                    for d in 0..2 {
+                        slo[d] -= (left[d] * sweep).abs();
+                        shi[d] += (left[d] * sweep).abs();
+                    }
                 }
+                Sweep::Inward(depth) if depth > 0.0 && chord > 0.0 => {
+                    let sign = if ccw { depth } else { -depth };
+                    for d in 0..2 {
+                        slo[d] = slo[d].min(slo[d] + sign * left[d]);
+                        shi[d] = shi[d].max(shi[d] + sign * left[d]);
+                    }
+                }
+                _ => {}
             }
             mboxes
                 .iter()

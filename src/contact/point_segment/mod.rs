@@ -38,8 +38,8 @@ mod residual;
 mod status;
 
 pub use candidates::{
-    anticipated_candidates, candidates_within, initial_candidates, pattern_candidates_within,
-    swept_candidates,
+    anticipated_candidates, candidates_within, initial_candidates, overlap_candidates,
+    pattern_candidates_within, swept_candidates,
 };
 
 use super::surface::Surface;

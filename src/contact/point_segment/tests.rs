@@ -2,7 +2,8 @@
 //! predicted displacement that sets it down brings every slave cell within reach at once,
 //! and a prediction gone wild is refused. A coarse block half a cell of its own above a
 //! fine foundation reserves no pattern until it comes within a few fine cells. A body
-//! carried through another finds the master cells along its normal, not those beside.
+//! carried through another finds the master cells along its normal, not those beside; swept
+//! inward only, it finds them and not those across an open gap.
 
 use super::*;
 use crate::fem::material::Modelisation;
@@ -168,4 +169,39 @@ fn a_body_carried_through_another_finds_the_cells_along_its_normal_not_beside() 
     // not inside: no sweep reaches the foundation from a gap of 1.0
     let none = swept_candidates(&mesh, None, &slave, &master, 1.0, 0.4);
     assert!(none.iter().all(Vec::is_empty));
+}
+
+#[test]
+fn an_inward_sweep_finds_the_cells_a_body_passed_through_not_those_across_a_gap() {
+    let (mesh, first_upper) = lifted_block();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let lowered = |dy: f64| {
+        let mut u = vec![0.0; 2 * mesh.num_nodes()];
+        for n in first_upper..mesh.num_nodes() {
+            u[2 * n + 1] = dy;
+        }
+        u
+    };
+    // 0.3 inside the foundation (three cells): the margin alone sees nothing, a sweep of 0.4
+    // into the block finds the master cell under each slave cell and at most its neighbours
+    let inside = lowered(-1.3);
+    let margin_only = overlap_candidates(&mesh, &inside, &slave, &master, 1.0, 0.0);
+    assert!(margin_only.iter().all(Vec::is_empty));
+    let passed = overlap_candidates(&mesh, &inside, &slave, &master, 1.0, 0.4);
+    for (ic, s) in passed.iter().enumerate() {
+        assert!(s.contains(&(ic + 3)), "cell {ic}: {s:?}");
+        assert!(s.len() <= 5, "cell {ic}: {} found", s.len());
+    }
+    // 0.3 above it (an open gap of three cells): the same sweep, inward, finds nothing,
+    // where one both ways would reach across the gap
+    let above = lowered(-0.7);
+    assert!(overlap_candidates(&mesh, &above, &slave, &master, 1.0, 0.4)
+        .iter()
+        .all(Vec::is_empty));
+    assert!(
+        swept_candidates(&mesh, Some(&above), &slave, &master, 1.0, 0.4)
+            .iter()
+            .all(|c| !c.is_empty())
+    );
 }
