@@ -124,6 +124,19 @@ fn disjoint(a: (P, P), b: (P, P)) -> bool {
     a.1[0] < b.0[0] || b.1[0] < a.0[0] || a.1[1] < b.0[1] || b.1[1] < a.0[1]
 }
 
+/// The boundary pieces (node pairs) of the bodies that hold `surface`'s nodes: none for a
+/// rigid surface.
+pub fn pieces_of_bodies(mesh: &Mesh, surface: &Surface) -> Vec<[usize; 2]> {
+    let bodies = node_bodies(mesh);
+    let ids: BTreeSet<usize> = surface
+        .nodes
+        .iter()
+        .map(|&n| bodies[n])
+        .filter(|&id| id != usize::MAX)
+        .collect();
+    boundary_pieces(mesh, &bodies, &ids)
+}
+
 impl OverlapCheck {
     /// The check of every pair, both ways: each surface's nodes against the other's body.
     pub fn new(mesh: &Mesh, pairs: &[Box<dyn ContactPair>]) -> Self {

@@ -192,7 +192,9 @@ impl PointToSegment {
         let rho_f = opts.rho_f;
         let candidates =
             pattern_candidates_within(mesh, None, &slave, &master, CANDIDATE_MARGIN, 0.0);
+        let master_pieces = super::super::overlap::pieces_of_bodies(mesh, &master);
         let mut pair = PointToSegment {
+            master_pieces,
             slave,
             master,
             opts,

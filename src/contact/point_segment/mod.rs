@@ -186,6 +186,8 @@ pub struct PointToSegment {
     pattern_sent: std::cell::Cell<Option<usize>>,
     /// Displacement at the start of the load step (slips are measured from it).
     u_start: Vec<f64>,
+    /// The boundary pieces of the master's body (none: rigid), where a point overlaps.
+    master_pieces: Vec<[usize; 2]>,
     /// Per multiplier, what turns it into a pressure: 1 for the continuous method (λ is a
     /// pressure), the node's share of the slave surface for node-to-segment (λ is a force).
     node_weight: Vec<f64>,

@@ -9,7 +9,7 @@ impl PointToSegment {
     pub fn initialise(&mut self, mesh: &Mesh) {
         let u = vec![0.0; 2 * mesh.num_nodes()];
         for i in 0..self.points.len() {
-            self.pair(mesh, &u, i, false);
+            self.pair(mesh, &u, i, false, &[]);
             let p = &self.points[i];
             let active = !p.excluded
                 && match self.opts.initial {

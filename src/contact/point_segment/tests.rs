@@ -3,7 +3,8 @@
 //! and a prediction gone wild is refused. A coarse block half a cell of its own above a
 //! fine foundation reserves no pattern until it comes within a few fine cells. A body
 //! carried through another finds the master cells along its normal, not those beside; swept
-//! inward only, it finds them and not those across an open gap.
+//! inward only, it finds them and not those across an open gap. A point inside the master body
+//! pairs however deep; one through it does not.
 
 use super::*;
 use crate::fem::material::Modelisation;
@@ -140,7 +141,7 @@ fn a_coarse_cell_far_in_fine_cells_reserves_no_pattern_until_it_comes_near() {
         u[2 * n + 1] = -0.3;
     }
     for i in 0..p.points.len() {
-        p.pair(&mesh, &u, i, true);
+        p.pair(&mesh, &u, i, true, &[]);
     }
     assert!(p.candidates.iter().all(|c| !c.is_empty()));
 }
@@ -204,4 +205,29 @@ fn an_inward_sweep_finds_the_cells_a_body_passed_through_not_those_across_a_gap(
             .iter()
             .all(|c| !c.is_empty())
     );
+}
+
+#[test]
+fn a_point_inside_the_master_body_pairs_however_deep_and_one_beyond_it_does_not() {
+    let (mesh, first_upper) = lifted_block();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let opts = Options::default();
+    let mut p = PointToSegment::new(&mesh, slave, master, opts, Modelisation::PlaneStrain, 1.0);
+    p.initialise(&mesh);
+    let lowered = |dy: f64| {
+        let mut u = vec![0.0; 2 * mesh.num_nodes()];
+        for n in first_upper..mesh.num_nodes() {
+            u[2 * n + 1] = dy;
+        }
+        u
+    };
+    // the block's bottom 0.5 inside the foundation (1 deep): five of its cells, beyond the
+    // reach of two; every point pairs, and its cell joins the pattern
+    p.pair_all(&mesh, &lowered(-1.5));
+    assert!(p.points.iter().all(|q| !q.excluded));
+    assert!(p.candidates.iter().all(|c| !c.is_empty()));
+    // 0.2 below the foundation's bottom: through it, no point pairs
+    p.pair_all(&mesh, &lowered(-2.2));
+    assert!(p.points.iter().all(|q| q.excluded));
 }
