@@ -128,13 +128,17 @@ fn disjoint(a: (P, P), b: (P, P)) -> bool {
 /// rigid surface.
 pub fn pieces_of_bodies(mesh: &Mesh, surface: &Surface) -> Vec<[usize; 2]> {
     let bodies = node_bodies(mesh);
-    let ids: BTreeSet<usize> = surface
+    boundary_pieces(mesh, &bodies, &bodies_of(&bodies, surface))
+}
+
+/// The bodies (ids per `bodies`) that hold `surface`'s nodes.
+fn bodies_of(bodies: &[usize], surface: &Surface) -> BTreeSet<usize> {
+    surface
         .nodes
         .iter()
         .map(|&n| bodies[n])
         .filter(|&id| id != usize::MAX)
-        .collect();
-    boundary_pieces(mesh, &bodies, &ids)
+        .collect()
 }
 
 impl OverlapCheck {
@@ -158,12 +162,7 @@ impl OverlapCheck {
         let mut sides = vec![];
         for (i, &(slave, master, allowance)) in pairs.iter().enumerate() {
             for (a, b) in [(slave, master), (master, slave)] {
-                let ids: BTreeSet<usize> = b
-                    .nodes
-                    .iter()
-                    .map(|&n| bodies[n])
-                    .filter(|&id| id != usize::MAX)
-                    .collect();
+                let ids = bodies_of(&bodies, b);
                 let tol = a
                     .nodes
                     .iter()
