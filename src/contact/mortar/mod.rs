@@ -274,9 +274,10 @@ impl Mortar {
     }
 
     /// How far from a slave cell, on the deformed geometry, master cells are sought along
-    /// its normal (large kinematics: inward only): the largest motion since the step start, rounded up to the smallest
-    /// slave cell size times a power of two (so that the set changes only when the motion
-    /// doubles: a changed set is a status change); 0 below one cell (the margin covers it).
+    /// its normal (large kinematics: inward only): the largest motion since the step
+    /// start, rounded up to the smallest slave cell size times a power of two (so that the
+    /// set changes only when the motion doubles: a changed set is a status change); 0 below
+    /// one cell (the margin covers it).
     /// An iterate can carry a body many cells through another on a fine mesh; within one
     /// cell of the deformed slave the overlap was not seen, its nodes' weighted gaps were
     /// zero and could not close (SSNP154 A with small kinematics at 0.033 mm: the cylinder
