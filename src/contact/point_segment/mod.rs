@@ -127,10 +127,9 @@ impl Default for Options {
 /// A point is paired with the master surface only within this many times the larger of
 /// its cell's and the nearest master cell's length, or inside the master body (`pair`).
 /// The pattern holds the candidates within CANDIDATE_MARGIN times the smaller of the
-/// cells' sizes (`pattern_candidates_within`),
-/// and takes in a paired point's cell once the point is that near or in contact
-/// (`pair`), so that a body closing a gap of a few fine cells pairs inside the initial
-/// pattern (no new analysis of the matrix).
+/// cells' sizes (`pattern_candidates_within`), and takes in a paired point's cell once the
+/// point is that near or in contact (`pair`), so that a body closing a gap of a few fine
+/// cells pairs inside the initial pattern (no new analysis of the matrix).
 const PAIRING_REACH: f64 = 2.0;
 
 /// How far (in the parametric coordinate, of 2 per cell) a point's projection may leave
