@@ -46,8 +46,16 @@ pub trait ContactPair {
     /// Statuses of the problem linearised at the last evaluation (its gaps and slips
     /// extended linearly to u), for active-set iterations at a fixed linearisation; how
     /// many changed, or None if the pair does not keep a linearisation (its Newton
-    /// iterations already are such iterations, e.g. gaps linear in u).
-    fn linearised_status(&mut self, _mesh: &Mesh, _u: &[f64], _lam: &[f64]) -> Option<usize> {
+    /// iterations already are such iterations, e.g. gaps linear in u). `u_lin` is the
+    /// displacement of the last evaluation, the linearisation point (for a pair that does
+    /// not store its linearisation: point-to-segment recomputes it there).
+    fn linearised_status(
+        &mut self,
+        _mesh: &Mesh,
+        _u_lin: &[f64],
+        _u: &[f64],
+        _lam: &[f64],
+    ) -> Option<usize> {
         None
     }
     /// Opens every status (no contact, no friction) when no slave node penetrates the

@@ -260,7 +260,9 @@ impl Nonlinear for ContactProblem<'_> {
         let mut changes = Some(0);
         for (p, &base) in self.pairs.iter_mut().zip(&self.mult_base) {
             let n = p.num_multipliers();
-            changes = match (changes, p.linearised_status(mesh, &u, &lam[base..base + n])) {
+            // (the last evaluation's displacement is the linearisation point)
+            let linearised = p.linearised_status(mesh, &self.solid.u, &u, &lam[base..base + n]);
+            changes = match (changes, linearised) {
                 (Some(a), Some(b)) => Some(a + b),
                 _ => None,
             };

@@ -379,7 +379,13 @@ impl ContactPair for Mortar {
         h.finish()
     }
 
-    fn linearised_status(&mut self, _mesh: &Mesh, u: &[f64], lam: &[f64]) -> Option<usize> {
+    fn linearised_status(
+        &mut self,
+        _mesh: &Mesh,
+        _u_lin: &[f64],
+        u: &[f64],
+        lam: &[f64],
+    ) -> Option<usize> {
         self.statuses_linearised(u, lam)
     }
 

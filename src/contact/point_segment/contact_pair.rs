@@ -27,6 +27,15 @@ impl super::super::pair::ContactPair for PointToSegment {
     fn update_status(&mut self, mesh: &Mesh, u: &[f64], lam: &[f64]) -> usize {
         self.update_status(mesh, u, lam)
     }
+    fn linearised_status(
+        &mut self,
+        mesh: &Mesh,
+        u_lin: &[f64],
+        u: &[f64],
+        lam: &[f64],
+    ) -> Option<usize> {
+        self.linearised_status(mesh, u_lin, u, lam)
+    }
     fn pattern_generation(&self) -> usize {
         self.candidates_generation
     }

@@ -24,10 +24,10 @@
 //! | `pairing.rs` | pairing points with master cells, projection, the point's geometry (`eval`), candidates anticipated at a predicted displacement |
 //! | `residual.rs` | `contribute`: normal residual and tangent, the matrix pattern |
 //! | `friction.rs` | Coulomb friction at a point: semi-multiplier or tangential penalty |
-//! | `status.rs` | initial statuses, the active set update, step commit and restore, pressures |
+//! | `status.rs` | initial statuses, the active set update (on the iterate or on the linearisation), step commit and restore, pressures |
 //! | `candidates.rs` | master cells within reach of each slave cell (also used by `mortar`) |
 //! | `contact_pair.rs` | the `ContactPair` interface |
-//! | `tests.rs` | anticipated candidates |
+//! | `tests.rs` | anticipated candidates, pairing, statuses on the linearisation |
 
 mod candidates;
 mod construction;

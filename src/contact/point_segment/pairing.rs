@@ -43,8 +43,17 @@ impl PointToSegment {
     ///
     /// A point behind the master surface and inside the master body (bounded by `body`, its
     /// deformed boundary pieces) pairs however many cells deep: an overlap has to be seen
-    /// to be undone. One beyond the body is a body passing through, not contact.
-    pub(super) fn pair(&mut self, mesh: &Mesh, u: &[f64], i: usize, keep: bool, body: &[(P, P)]) {
+    /// to be undone. One beyond the body is a body passing through, not contact. With
+    /// `any_distance`, a point pairs however far it is (for the linearised statuses).
+    pub(super) fn pair(
+        &mut self,
+        mesh: &Mesh,
+        u: &[f64],
+        i: usize,
+        keep: bool,
+        body: &[(P, P)],
+        any_distance: bool,
+    ) {
         let mut ns = [0.0; MAX_NODES];
         let xs = self.slave_point(mesh, u, i, &mut ns);
         // (whether xs lies behind master cell im at q, where its tangent is t)
@@ -68,8 +77,9 @@ impl PointToSegment {
             // (a point gone beyond reach is paired again, i.e. left unpaired, below)
             let dist = (q[0] - xs[0]).hypot(q[1] - xs[1]);
             let im = self.points[i].master;
-            let near =
-                dist <= PAIRING_REACH * t[0].hypot(t[1]) || (behind(im, q, t) && inside(xs, body));
+            let near = any_distance
+                || dist <= PAIRING_REACH * t[0].hypot(t[1])
+                || (behind(im, q, t) && inside(xs, body));
             if near && xi.abs() <= 1.0 + PAIRING_HYSTERESIS {
                 self.points[i].xi_m = xi.clamp(-1.0, 1.0);
                 return;
@@ -130,7 +140,7 @@ impl PointToSegment {
         let best = best.and_then(|(d2, im, xi, over, behind)| {
             let reach =
                 PAIRING_REACH * length(self.slave.cells[ic]).max(length(self.master.cells[im]));
-            if d2 <= reach * reach {
+            if any_distance || d2 <= reach * reach {
                 Some((d2, im, xi, over, false))
             } else {
                 (behind && inside(xs, body)).then_some((d2, im, xi, over, true))
@@ -164,7 +174,7 @@ impl PointToSegment {
     /// surface to the candidates of slave cell `ic`: a point slides to a neighbouring
     /// master cell far more often than it jumps, and a pattern that already holds the
     /// neighbours keeps the symbolic factorisation (≈ 2 numeric ones) from being redone.
-    fn add_candidates(&mut self, mesh: &Mesh, ic: usize, im: usize) {
+    pub(super) fn add_candidates(&mut self, mesh: &Mesh, ic: usize, im: usize) {
         let mut ring = vec![im];
         for _ in 0..2 {
             let mut next = ring.clone();
@@ -329,7 +339,7 @@ impl PointToSegment {
             .map(|&[a, b]| (at(a), at(b)))
             .collect();
         for i in 0..self.points.len() {
-            self.pair(mesh, u, i, true, &body);
+            self.pair(mesh, u, i, true, &body, false);
         }
     }
 }

@@ -9,7 +9,7 @@ impl PointToSegment {
     pub fn initialise(&mut self, mesh: &Mesh) {
         let u = vec![0.0; 2 * mesh.num_nodes()];
         for i in 0..self.points.len() {
-            self.pair(mesh, &u, i, false, &[]);
+            self.pair(mesh, &u, i, false, &[], false);
             let p = &self.points[i];
             let active = !p.excluded
                 && match self.opts.initial {
@@ -85,29 +85,81 @@ impl PointToSegment {
             let p = &self.points[i];
             let active = !p.excluded && lp - self.opts.rho * e.d < 0.0;
             if active != p.active {
-                let cell = p.cell;
                 changes += 1;
                 self.points[i].active = active;
-                // (the slave node nearest the point)
-                let (a, _) =
-                    e.ns.iter().enumerate().fold(
-                        (0, f64::MIN),
-                        |b, (a, &v)| {
-                            if v > b.1 {
-                                (a, v)
-                            } else {
-                                b
-                            }
-                        },
-                    );
-                self.changed
-                    .push(mesh.cell_nodes(self.slave.cells[cell])[a]);
+                self.changed.push(self.nearest_slave_node(mesh, i, &e.ns));
             }
             if count_switches {
                 self.count_friction_switch(mesh, u, lam, i, (&e, lp, lambda_floor, peak));
             }
         }
         changes
+    }
+
+    /// Statuses of the problem linearised at `u_lin` (the last evaluation), taken at the
+    /// trial point (u, λ): each point keeps its pairing, and its gap is extended linearly
+    /// along its normal there (B·Δu; the smoothed normal's turn with the cells around,
+    /// second order at a solution, is left out). Newton takes them where re-solves on the
+    /// iterate's own statuses swing: a first correction from a point contact pushes a body
+    /// far through the other, where the gaps of the deformed cells say little of the
+    /// contact zone, and the linearised gaps are those the correction itself satisfies.
+    /// Friction branches stay with the iterate's update.
+    pub fn linearised_status(
+        &mut self,
+        mesh: &Mesh,
+        u_lin: &[f64],
+        u: &[f64],
+        lam: &[f64],
+    ) -> Option<usize> {
+        let mut changes = 0;
+        self.changed.clear();
+        for i in 0..self.points.len() {
+            // (a point left unpaired, beyond reach at the linearisation point, is paired
+            // there however far: the correction may have closed it)
+            if self.points[i].excluded && !self.points[i].left_out {
+                self.pair(mesh, u_lin, i, false, &[], true);
+            }
+            let e = self.eval(mesh, u_lin, i);
+            let p = &self.points[i];
+            let along = |n: usize| {
+                e.normal[0] * (u[2 * n] - u_lin[2 * n])
+                    + e.normal[1] * (u[2 * n + 1] - u_lin[2 * n + 1])
+            };
+            let snodes = mesh.cell_nodes(self.slave.cells[p.cell]);
+            let mnodes = mesh.cell_nodes(self.master.cells[p.master]);
+            let d = e.d
+                + snodes
+                    .iter()
+                    .enumerate()
+                    .map(|(a, &n)| e.ns[a] * along(n))
+                    .sum::<f64>()
+                - mnodes
+                    .iter()
+                    .enumerate()
+                    .map(|(a, &n)| e.nm[a] * along(n))
+                    .sum::<f64>();
+            let lp = self.point_lambda(mesh, i, &e.ns, lam);
+            let active = !p.excluded && lp - self.opts.rho * d < 0.0;
+            if active != p.active {
+                changes += 1;
+                let (ic, im) = (p.cell, p.master);
+                self.points[i].active = active;
+                self.changed.push(self.nearest_slave_node(mesh, i, &e.ns));
+                if active && !self.candidates[ic].contains(&im) {
+                    self.add_candidates(mesh, ic, im);
+                }
+            }
+        }
+        Some(changes)
+    }
+
+    /// The slave node nearest point i (of shape functions `ns` on its cell).
+    fn nearest_slave_node(&self, mesh: &Mesh, i: usize, ns: &[f64]) -> usize {
+        let (a, _) = ns
+            .iter()
+            .enumerate()
+            .fold((0, f64::MIN), |b, (a, &v)| if v > b.1 { (a, v) } else { b });
+        mesh.cell_nodes(self.slave.cells[self.points[i].cell])[a]
     }
 
     /// A hash of the points' contact statuses, their active flags alone (what a status

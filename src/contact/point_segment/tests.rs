@@ -4,7 +4,8 @@
 //! fine foundation reserves no pattern until it comes within a few fine cells. A body
 //! carried through another finds the master cells along its normal, not those beside; swept
 //! inward only, it finds them and not those across an open gap. A point inside the master body
-//! pairs however deep; one through it does not.
+//! pairs however deep; one through it does not. Statuses on the linearisation: a block set
+//! down from beyond reach closes, one held short opens.
 
 use super::*;
 use crate::fem::material::Modelisation;
@@ -141,7 +142,7 @@ fn a_coarse_cell_far_in_fine_cells_reserves_no_pattern_until_it_comes_near() {
         u[2 * n + 1] = -0.3;
     }
     for i in 0..p.points.len() {
-        p.pair(&mesh, &u, i, true, &[]);
+        p.pair(&mesh, &u, i, true, &[], false);
     }
     assert!(p.candidates.iter().all(|c| !c.is_empty()));
 }
@@ -230,4 +231,49 @@ fn a_point_inside_the_master_body_pairs_however_deep_and_one_beyond_it_does_not(
     // 0.2 below the foundation's bottom: through it, no point pairs
     p.pair_all(&mesh, &lowered(-2.2));
     assert!(p.points.iter().all(|q| q.excluded));
+}
+
+#[test]
+fn linearised_statuses_close_a_block_set_down_from_beyond_reach_and_open_one_held_short() {
+    let (mesh, first_upper) = lifted_block();
+    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
+    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
+    let opts = Options::default();
+    let mut p = PointToSegment::new(&mesh, slave, master, opts, Modelisation::PlaneStrain, 1.0);
+    p.initialise(&mesh);
+    // a gap of 1.0, five times the reach: every point unpaired, open
+    assert!(p.points.iter().all(|q| q.excluded && !q.active));
+    assert!(p.candidates.iter().all(Vec::is_empty));
+    let lowered = |dy: f64| {
+        let mut u = vec![0.0; 2 * mesh.num_nodes()];
+        for n in first_upper..mesh.num_nodes() {
+            u[2 * n + 1] = dy;
+        }
+        u
+    };
+    let lam = vec![0.0; p.num_multipliers()];
+    let n = p.points.len();
+    // linearised at rest, taken where a correction set the block 0.05 into the foundation:
+    // every point pairs there and closes (gap −1.0 + 1.05), and its cell joins the pattern
+    let rest = lowered(0.0);
+    assert_eq!(
+        p.linearised_status(&mesh, &rest, &lowered(-1.05), &lam),
+        Some(n)
+    );
+    assert!(p.points.iter().all(|q| q.active && !q.excluded));
+    assert!(p.candidates.iter().all(|c| !c.is_empty()));
+    // a translation is exact in the linearisation: the iterate's own statuses agree
+    assert_eq!(p.update_status(&mesh, &lowered(-1.05), &lam), 0);
+    // taken where the block stops 0.05 short of the foundation: every point opens
+    assert_eq!(
+        p.linearised_status(&mesh, &rest, &lowered(-0.95), &lam),
+        Some(n)
+    );
+    assert!(p.points.iter().all(|q| !q.active));
+    // linearised half-way down (still beyond reach), taken 0.05 in: closed again
+    assert_eq!(
+        p.linearised_status(&mesh, &lowered(-0.5), &lowered(-1.05), &lam),
+        Some(n)
+    );
+    assert!(p.points.iter().all(|q| q.active));
 }

@@ -84,6 +84,9 @@ pub(super) fn iterate_step(
     let mut linearised_resolves = 0;
     let mut linearised_seen: Vec<u64> = vec![];
     let mut resolved_with: Vec<u64> = vec![];
+    // after plain re-solves swung at this point: whether the re-solves on the
+    // linearisation that took over are still going (see below)
+    let mut swing_linearised: Option<bool> = None;
     // the plain Newton iterate a re-solve replaced
     let mut before_resolve: Option<Vec<f64>> = None;
     // the correction of the plain Newton iterate that started this point's re-solves
@@ -125,6 +128,9 @@ pub(super) fn iterate_step(
             });
             step.converged = true;
             break;
+        }
+        if !resolve {
+            swing_linearised = None;
         }
         if !resolve && it > 0 {
             newton_its += 1;
@@ -445,6 +451,9 @@ pub(super) fn iterate_step(
         // A re-solve is a shortcut: if its statuses make the system singular, Newton
         // goes on from the plain iterate it replaced, as without re-solves.
         if let (true, true, Some(_)) = (singular, resolve, &before_resolve) {
+            if settings.verbose {
+                eprintln!("                        (singular with these statuses: back to the last iterate)");
+            }
             *x = before_resolve.take().unwrap();
             resolve = false;
             resolves = 0;
@@ -494,7 +503,11 @@ pub(super) fn iterate_step(
         // counted, 21 → 24 and 19 → 20). With friction the frozen-body corrections settle
         // the statuses at that cost already (D mortar at 93k: 0.99–1.00×, 21 → 23
         // iterations: at every point with friction too, this was tried and not kept).
-        let linearised_here = newton_its == 0 || (!backtracking && lin.condenses_contact());
+        // (where the problem re-solves on the iterate's own statuses, only after those
+        // swung: see below)
+        let linearised_here = (!problem.active_set_resolves()
+            && (newton_its == 0 || (!backtracking && lin.condenses_contact())))
+            || swing_linearised == Some(true);
         let linearised =
             if !chord && linearised_here && linearised_resolves < MAX_LINEARISED_RESOLVES {
                 problem.update_status_linearised(x, lambda)?
@@ -521,6 +534,9 @@ pub(super) fn iterate_step(
         }
         linearised_resolves = 0;
         linearised_seen.clear();
+        if swing_linearised.is_some() {
+            swing_linearised = Some(false);
+        }
         let before = changes;
         // the statuses solved with from this linearisation point (a cycle, below), where
         // re-solves may follow at all
@@ -540,7 +556,39 @@ pub(super) fn iterate_step(
         // mesh's 7, 1, 2, 2 settle): Newton goes on from the plain iterate, as without
         // re-solves, and takes no more there (with friction: no more in this step; see
         // where Newton points are counted, above).
-        if resolve && changes > before && 2 * changes > first_changes {
+        // Where the problem has them, the statuses of the linearised problem take over
+        // first (once per point): they are those the corrections satisfy, and their
+        // re-solves settle where the plain ones, read on cells a correction pushed far
+        // from a point contact, swung (SSNP154 A node-to-segment at 1.27M unknowns, the
+        // first step: 457, 217, then more than 228 changes; from the plain iterate then,
+        // 27 iterations and a cut step).
+        let swung = resolve && changes > before && 2 * changes > first_changes;
+        let linearised = if swung && swing_linearised.is_none() {
+            problem.update_status_linearised(x, lambda)?
+        } else {
+            None
+        };
+        if let Some(ch) = linearised.filter(|&ch| ch > 0) {
+            if settings.verbose {
+                eprintln!(
+                    "                        {changes} contact status changes: swinging; \
+                     {ch} status changes on the linearisation instead"
+                );
+            }
+            swing_linearised = Some(true);
+            linearised_resolves = 1;
+            linearised_seen.push(problem.status_signature());
+            step.iterations.last_mut().unwrap().status_changes = ch;
+            changes = ch;
+            before_resolve = Some(std::mem::replace(x, x_lin));
+            resolves += 1;
+            continue;
+        }
+        if swing_linearised == Some(false) {
+            // (the linearised problem's solution, settled: Newton goes on from it with its
+            // own statuses, without plain re-solves here, which had swung)
+            resolves_off = true;
+        } else if swung {
             if let Some(dx) = plain_correction.take() {
                 for ((xi, &x0), d) in x.iter_mut().zip(&x_lin).zip(&dx) {
                     *xi = x0 + d;
