@@ -562,7 +562,12 @@ pub(super) fn iterate_step(
         // from a point contact, swung (SSNP154 A node-to-segment at 1.27M unknowns, the
         // first step: 457, 217, then more than 228 changes; from the plain iterate then,
         // 27 iterations and a cut step).
-        let swung = resolve && changes > before && 2 * changes > first_changes;
+        // (plain re-solves that swung: not the linearised ones' own, whose plain statuses
+        // are taken at the next point)
+        let swung = resolve
+            && plain_correction.is_some()
+            && changes > before
+            && 2 * changes > first_changes;
         let linearised = if swung && swing_linearised.is_none() {
             problem.update_status_linearised(x, lambda)?
         } else {
