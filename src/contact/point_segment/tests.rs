@@ -208,21 +208,29 @@ fn an_inward_sweep_finds_the_cells_a_body_passed_through_not_those_across_a_gap(
     );
 }
 
-#[test]
-fn a_point_inside_the_master_body_pairs_however_deep_and_one_beyond_it_does_not() {
+/// The lifted block's bottom as the slave of the foundation's top, with the default
+/// options, initialised; and the displacement that lowers the block by -dy.
+fn lifted_block_pair() -> (Mesh, PointToSegment, impl Fn(f64) -> Vec<f64>) {
     let (mesh, first_upper) = lifted_block();
     let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
     let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
     let opts = Options::default();
     let mut p = PointToSegment::new(&mesh, slave, master, opts, Modelisation::PlaneStrain, 1.0);
     p.initialise(&mesh);
-    let lowered = |dy: f64| {
-        let mut u = vec![0.0; 2 * mesh.num_nodes()];
-        for n in first_upper..mesh.num_nodes() {
+    let nodes = mesh.num_nodes();
+    let lowered = move |dy: f64| {
+        let mut u = vec![0.0; 2 * nodes];
+        for n in first_upper..nodes {
             u[2 * n + 1] = dy;
         }
         u
     };
+    (mesh, p, lowered)
+}
+
+#[test]
+fn a_point_inside_the_master_body_pairs_however_deep_and_one_beyond_it_does_not() {
+    let (mesh, mut p, lowered) = lifted_block_pair();
     // the block's bottom 0.5 inside the foundation (1 deep): five of its cells, beyond the
     // reach of two; every point pairs, and its cell joins the pattern
     p.pair_all(&mesh, &lowered(-1.5));
@@ -235,22 +243,10 @@ fn a_point_inside_the_master_body_pairs_however_deep_and_one_beyond_it_does_not(
 
 #[test]
 fn linearised_statuses_close_a_block_set_down_from_beyond_reach_and_open_one_held_short() {
-    let (mesh, first_upper) = lifted_block();
-    let slave = Surface::from_group(&mesh, "UpperBottom", "slave").unwrap();
-    let master = Surface::from_group(&mesh, "LowerTop", "master").unwrap();
-    let opts = Options::default();
-    let mut p = PointToSegment::new(&mesh, slave, master, opts, Modelisation::PlaneStrain, 1.0);
-    p.initialise(&mesh);
+    let (mesh, mut p, lowered) = lifted_block_pair();
     // a gap of 1.0, five times the reach: every point unpaired, open
     assert!(p.points.iter().all(|q| q.excluded && !q.active));
     assert!(p.candidates.iter().all(Vec::is_empty));
-    let lowered = |dy: f64| {
-        let mut u = vec![0.0; 2 * mesh.num_nodes()];
-        for n in first_upper..mesh.num_nodes() {
-            u[2 * n + 1] = dy;
-        }
-        u
-    };
     let lam = vec![0.0; p.num_multipliers()];
     let n = p.points.len();
     // linearised at rest, taken where a correction set the block 0.05 into the foundation:
