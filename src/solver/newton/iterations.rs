@@ -568,7 +568,12 @@ pub(super) fn iterate_step(
             && plain_correction.is_some()
             && changes > before
             && 2 * changes > first_changes;
-        let linearised = if swung && swing_linearised.is_none() {
+        // (with friction at a step's first point only, as mortar's: later, the normal
+        // statuses of the linearisation, friction's branches left to the iterate, did not
+        // settle (D node-to-segment at 960k unknowns, the second step: 84, 62, 19, 20, 30
+        // … changes, then divergence and a cut step)
+        let takeover = swung && (newton_its == 0 || !backtracking);
+        let linearised = if takeover && swing_linearised.is_none() {
             problem.update_status_linearised(x, lambda)?
         } else {
             None
