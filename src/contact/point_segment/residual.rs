@@ -3,9 +3,24 @@
 //! over the candidates.
 
 use super::super::smoothed_normal::smoothed_frame;
-use super::{FrictionPoint, OwnedCoefs, PointToSegment};
+use super::{Eval, FrictionPoint, OwnedCoefs, PointToSegment};
 use crate::assembly::coupled::Triplets;
 use crate::mesh::Mesh;
+
+/// B = [N_s n ; −N_m n] over (dof id, value): the gap's change with the displacements on
+/// a point's frame (its projection and normal held).
+pub(super) fn gap_row(e: &Eval, snodes: &[usize], mnodes: &[usize]) -> OwnedCoefs {
+    let mut b = Vec::with_capacity(2 * (snodes.len() + mnodes.len()));
+    for (a, &n) in snodes.iter().enumerate() {
+        b.push((2 * n, e.ns[a] * e.normal[0]));
+        b.push((2 * n + 1, e.ns[a] * e.normal[1]));
+    }
+    for (a, &n) in mnodes.iter().enumerate() {
+        b.push((2 * n, -e.nm[a] * e.normal[0]));
+        b.push((2 * n + 1, -e.nm[a] * e.normal[1]));
+    }
+    b
+}
 
 impl PointToSegment {
     /// Residual contributions (`ru` on full dofs, `rl` on multipliers, both added to) and
@@ -35,16 +50,7 @@ impl PointToSegment {
             let mc = self.master.cells[p.master];
             let snodes = mesh.cell_nodes(sc);
             let mnodes = mesh.cell_nodes(mc);
-            // B over (dof id, value)
-            let mut b: Vec<(usize, f64)> = vec![];
-            for (a, &n) in snodes.iter().enumerate() {
-                b.push((2 * n, e.ns[a] * e.normal[0]));
-                b.push((2 * n + 1, e.ns[a] * e.normal[1]));
-            }
-            for (a, &n) in mnodes.iter().enumerate() {
-                b.push((2 * n, -e.nm[a] * e.normal[0]));
-                b.push((2 * n + 1, -e.nm[a] * e.normal[1]));
-            }
+            let b = gap_row(&e, snodes, mnodes);
             // (an excluded node's multiplier stays zero by its own row)
             let mults: Vec<(usize, f64)> = snodes
                 .iter()

@@ -1,6 +1,8 @@
-//! Statuses: the initial ones, the active set update from the iterate, what a step
-//! commits and a cut step restores; contact pressures from the multipliers.
+//! Statuses: the initial ones, the active set update from the iterate or on the
+//! linearisation, what a step commits and a cut step restores; contact pressures from the
+//! multipliers.
 
+use super::residual::gap_row;
 use super::{InitialStatus, PointToSegment, Saved};
 use crate::mesh::Mesh;
 
@@ -121,22 +123,12 @@ impl PointToSegment {
             }
             let e = self.eval(mesh, u_lin, i);
             let p = &self.points[i];
-            let along = |n: usize| {
-                e.normal[0] * (u[2 * n] - u_lin[2 * n])
-                    + e.normal[1] * (u[2 * n + 1] - u_lin[2 * n + 1])
-            };
             let snodes = mesh.cell_nodes(self.slave.cells[p.cell]);
             let mnodes = mesh.cell_nodes(self.master.cells[p.master]);
             let d = e.d
-                + snodes
+                + gap_row(&e, snodes, mnodes)
                     .iter()
-                    .enumerate()
-                    .map(|(a, &n)| e.ns[a] * along(n))
-                    .sum::<f64>()
-                - mnodes
-                    .iter()
-                    .enumerate()
-                    .map(|(a, &n)| e.nm[a] * along(n))
+                    .map(|&(dof, v)| v * (u[dof] - u_lin[dof]))
                     .sum::<f64>();
             let lp = self.point_lambda(mesh, i, &e.ns, lam);
             let active = !p.excluded && lp - self.opts.rho * d < 0.0;
