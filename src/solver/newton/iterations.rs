@@ -12,6 +12,15 @@ use super::step_start::rest_solution;
 use super::{Iteration, NewtonReport, NewtonSettings, Nonlinear, StepReport};
 use crate::error::{Error, Result};
 
+/// Where the statuses on the linearisation stand at a Newton point after plain re-solves
+/// swung there: not taken, their re-solves going on, or settled.
+#[derive(Clone, Copy, PartialEq)]
+enum Takeover {
+    NotTaken,
+    Running,
+    Settled,
+}
+
 /// Active-set re-solves in a row from one linearisation point.
 const MAX_RESOLVES: usize = 4;
 /// Re-solves on the linearised constraints in a row from one linearisation point (the
@@ -84,9 +93,9 @@ pub(super) fn iterate_step(
     let mut linearised_resolves = 0;
     let mut linearised_seen: Vec<u64> = vec![];
     let mut resolved_with: Vec<u64> = vec![];
-    // after plain re-solves swung at this point: whether the re-solves on the
-    // linearisation that took over are still going (see below)
-    let mut swing_linearised: Option<bool> = None;
+    // the statuses on the linearisation taking over from swinging plain re-solves at this
+    // point (see below)
+    let mut takeover = Takeover::NotTaken;
     // the plain Newton iterate a re-solve replaced
     let mut before_resolve: Option<Vec<f64>> = None;
     // the correction of the plain Newton iterate that started this point's re-solves
@@ -130,7 +139,7 @@ pub(super) fn iterate_step(
             break;
         }
         if !resolve {
-            swing_linearised = None;
+            takeover = Takeover::NotTaken;
         }
         if !resolve && it > 0 {
             newton_its += 1;
@@ -507,7 +516,7 @@ pub(super) fn iterate_step(
         // swung: see below)
         let linearised_here = (!problem.active_set_resolves()
             && (newton_its == 0 || (!backtracking && lin.condenses_contact())))
-            || swing_linearised == Some(true);
+            || takeover == Takeover::Running;
         let linearised =
             if !chord && linearised_here && linearised_resolves < MAX_LINEARISED_RESOLVES {
                 problem.update_status_linearised(x, lambda)?
@@ -534,8 +543,8 @@ pub(super) fn iterate_step(
         }
         linearised_resolves = 0;
         linearised_seen.clear();
-        if swing_linearised.is_some() {
-            swing_linearised = Some(false);
+        if takeover == Takeover::Running {
+            takeover = Takeover::Settled;
         }
         let before = changes;
         // the statuses solved with from this linearisation point (a cycle, below), where
@@ -572,8 +581,8 @@ pub(super) fn iterate_step(
         // statuses of the linearisation, friction's branches left to the iterate, did not
         // settle (D node-to-segment at 960k unknowns, the second step: 84, 62, 19, 20, 30
         // … changes, then divergence and a cut step)
-        let takeover = swung && (newton_its == 0 || !backtracking);
-        let linearised = if takeover && swing_linearised.is_none() {
+        let may_take_over = swung && (newton_its == 0 || !backtracking);
+        let linearised = if may_take_over && takeover == Takeover::NotTaken {
             problem.update_status_linearised(x, lambda)?
         } else {
             None
@@ -585,16 +594,15 @@ pub(super) fn iterate_step(
                      {ch} status changes on the linearisation instead"
                 );
             }
-            swing_linearised = Some(true);
+            takeover = Takeover::Running;
             linearised_resolves = 1;
             linearised_seen.push(problem.status_signature());
             step.iterations.last_mut().unwrap().status_changes = ch;
             changes = ch;
             before_resolve = Some(std::mem::replace(x, x_lin));
-            resolves += 1;
             continue;
         }
-        if swing_linearised == Some(false) {
+        if takeover == Takeover::Settled {
             // (the linearised problem's solution, settled: Newton goes on from it with its
             // own statuses, without plain re-solves here, which had swung)
             resolves_off = true;
